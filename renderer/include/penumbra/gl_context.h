@@ -1,0 +1,54 @@
+// GlContext: a current OpenGL ES 3.0-class (WebGL2-equivalent) context. Natively it is headless
+// (EGL surfaceless on Mesa by default, the EGL device platform as fallback, or OSMesa); in the
+// browser it is a WebGL2 context on a canvas. Everything else in Penumbra renders into
+// framebuffer objects and never touches a window system.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+
+enum class GlBackend {
+  Auto,            // PENUMBRA_GL if set, else EGL surfaceless, then EGL device, then OSMesa
+  EglSurfaceless,  // EGL_PLATFORM_SURFACELESS_MESA
+  EglDevice,       // EGL_EXT_platform_device (e.g. EGL_MESA_device_software or a GPU)
+  OSMesa,          // Mesa's off-screen desktop GL 4.5 core (runs our ES 3.00 shaders)
+  WebGL2,          // Emscripten, a canvas in the page
+};
+
+const char* backendName(GlBackend backend);
+// Parses "auto", "egl", "egl-device", "osmesa", "webgl2" (case-insensitive).
+Result<GlBackend> parseBackend(std::string_view name);
+
+struct ContextOptions {
+  GlBackend backend = GlBackend::Auto;
+  std::string canvasSelector = "#canvas";  // WebGL2 only
+  bool preserveDrawingBuffer = true;       // WebGL2 only: screenshots read the canvas
+};
+
+class GlContext {
+ public:
+  virtual ~GlContext() = default;
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  // Creates a context and makes it current, with the GL entry points loaded. When no backend
+  // works, the error says in one line which backends were tried and why each failed.
+  static Result<std::unique_ptr<GlContext>> create(const ContextOptions& options = {});
+
+  virtual GlBackend backend() const = 0;
+  // "EGL surfaceless: OpenGL ES 3.0 Mesa 22.3.6 (llvmpipe ...)" and the like.
+  virtual std::string description() const = 0;
+  virtual Status makeCurrent() = 0;
+  // True when the API is desktop GL (OSMesa): some ES-only behaviour must be switched on.
+  virtual bool isDesktopGl() const { return false; }
+
+ protected:
+  GlContext() = default;
+};
+
+}  // namespace penumbra

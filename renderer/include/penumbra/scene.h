@@ -1,0 +1,178 @@
+// Scene: the CPU-side description of what Penumbra renders, produced by the glTF loader and
+// consumed by the renderer (which uploads it to GL). Units: metres, +Y up, right-handed, as
+// in glTF. Light units (see docs/scene-format.md): area lights carry their surface luminance
+// in nits, which the renderer uses directly as linear radiance; environment texels are
+// radiance in the same unit (times the environment intensity); punctual lights follow
+// KHR_lights_punctual (candela for point/spot, lux for directional).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Bounds& b) {
+    if (b.valid()) {
+      extend(b.min);
+      extend(b.max);
+    }
+  }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  float radius() const { return glm::length(max - min) * 0.5f; }
+};
+
+// glTF sampler values (GL enums as numbers, so the loader stays GL-free).
+struct SamplerDesc {
+  int magFilter = 9729;  // LINEAR
+  int minFilter = 9987;  // LINEAR_MIPMAP_LINEAR
+  int wrapS = 10497;     // REPEAT
+  int wrapT = 10497;
+};
+
+// Decoded image, always RGBA8 (row 0 = top). Whether it is sRGB depends on the slot that uses
+// it (base colour and emissive are sRGB), so the renderer decides at upload.
+struct ImageData {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> pixels;
+  bool placeholder = false;  // a missing or undecodable image replaced by a 1x1 texel
+};
+
+struct TextureRef {
+  int image = -1;    // index into Scene::images; -1 = no texture
+  int sampler = -1;  // index into Scene::samplers; -1 = default sampler
+  int texCoord = 0;  // 0 or 1
+  // KHR_texture_transform as a 3x3 UV matrix (translation * rotation * scale).
+  glm::mat3 transform{1.0f};
+  bool valid() const { return image >= 0; }
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};
+  float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength
+  float normalScale = 1.0f;
+  float occlusionStrength = 1.0f;
+  TextureRef baseColorTexture;
+  TextureRef metallicRoughnessTexture;
+  TextureRef normalTexture;
+  TextureRef occlusionTexture;
+  TextureRef emissiveTexture;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+};
+
+// One drawable primitive, de-indexed into separate attribute arrays. Optional arrays are
+// empty when absent (normals and, for normal-mapped materials, tangents are generated).
+struct Primitive {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;  // xyz tangent, w bitangent sign (MikkTSpace convention)
+  std::vector<glm::vec2> uv0;
+  std::vector<glm::vec2> uv1;
+  std::vector<glm::vec4> colors;  // COLOR_0, linear RGBA
+  std::vector<uint32_t> indices;  // always present (generated 0..n-1 for non-indexed input)
+  int material = -1;              // -1 = the glTF default material
+  Bounds bounds;                  // object space
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Primitive> primitives;
+};
+
+// A mesh placed in the world (the node hierarchy flattened).
+struct Instance {
+  int mesh = -1;
+  glm::mat4 world{1.0f};
+  std::string nodeName;
+};
+
+struct Camera {
+  std::string name;
+  glm::mat4 world{1.0f};  // camera-to-world; the camera looks down its local -Z
+  float yfov = 0.8f;      // radians
+  float aspect = 0.0f;    // 0 = take the viewport's
+  float znear = 0.05f;
+  float zfar = 0.0f;      // 0 = infinite
+};
+
+enum class LightType { Rect, Disk, Point, Spot, Directional };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Rect;
+  glm::vec3 color{1.0f};
+  // Rect/disk: luminance in nits. Point/spot: candela. Directional: lux.
+  float intensity = 1.0f;
+  glm::vec3 position{0.0f};    // world centre
+  glm::vec3 direction{0, 0, -1};  // world direction of emission (area, spot, directional)
+  glm::vec3 right{1, 0, 0};    // world unit vector along the rect's width (local +X)
+  glm::vec3 up{0, 1, 0};       // world unit vector along the rect's height (local +Y)
+  float width = 1.0f;          // rect width; disk diameter
+  float height = 1.0f;         // rect height; disk diameter
+  float range = 0.0f;          // punctual range (0 = infinite)
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.785398f;
+
+  bool isArea() const { return type == LightType::Rect || type == LightType::Disk; }
+  float area() const {
+    return type == LightType::Rect ? width * height
+                                   : (type == LightType::Disk ? 0.785398163f * width * width : 0.0f);
+  }
+};
+
+struct Scene {
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<ImageData> images;
+  std::vector<SamplerDesc> samplers;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+  std::vector<Light> lights;
+  Bounds bounds;                      // world space, of all instances
+  std::vector<std::string> warnings;  // non-fatal problems (unknown optional extension, ...)
+  size_t triangleCount() const;
+};
+
+struct LoadOptions {
+  // Refuse a scene whose decoded geometry and textures would exceed this many bytes.
+  int64_t memoryBudgetBytes = int64_t{2} << 30;
+  // Textures larger than this on either side are downscaled (by halving) on load.
+  int maxTextureSize = 4096;
+};
+
+// Loads a .gltf (with external or embedded buffers and images) or .glb file.
+Result<Scene> loadGltf(const std::string& path, const LoadOptions& options = {});
+// Loads from memory; `baseDir` resolves relative URIs (may be empty), `name` is for messages.
+Result<Scene> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& baseDir,
+                                 const std::string& name, const LoadOptions& options = {});
+
+// A camera framing the scene's bounds from the front (+Z toward -Z), slightly above.
+Camera defaultCamera(const Scene& scene);
+// Finds a camera by name, or by index when `nameOrIndex` is a number.
+Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex);
+
+}  // namespace penumbra

@@ -1,0 +1,144 @@
+// Move-only owners of the remaining GL object kinds: Buffer, VertexArray, Renderbuffer,
+// Framebuffer and TimerQuery. Renderer logic uses these (and Texture2D/TextureCube/Program)
+// instead of raw GL calls.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "gl/handle.h"
+#include "gl/texture.h"
+#include "penumbra/error.h"
+
+namespace penumbra::gl {
+
+enum class BufferKind { Vertex, Index, Uniform };
+
+class Buffer {
+ public:
+  Buffer() = default;
+  static Result<Buffer> create(BufferKind kind, std::span<const uint8_t> data);
+  template <class T>
+  static Result<Buffer> create(BufferKind kind, std::span<const T> data) {
+    return create(kind, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(data.data()),
+                                                 data.size_bytes()));
+  }
+  void update(size_t offset, std::span<const uint8_t> data);
+  void bind() const;
+  GLuint id() const { return handle_.id(); }
+  size_t size() const { return size_; }
+  BufferKind kind() const { return kind_; }
+
+ private:
+  Handle<deleteBuffer> handle_;
+  BufferKind kind_ = BufferKind::Vertex;
+  size_t size_ = 0;
+};
+
+enum class AttribType { Float, UInt8, UInt16, Int8, Int16 };
+enum class IndexType { UInt8, UInt16, UInt32 };
+enum class Primitive { Triangles, TriangleStrip, Lines, Points };
+
+class VertexArray {
+ public:
+  VertexArray() = default;
+  static VertexArray create();
+  // Describes attribute `location` read from `buffer` (which must outlive the draws).
+  void setAttribute(int location, const Buffer& buffer, int components, AttribType type,
+                    bool normalized, int stride, size_t offset);
+  // A constant value for an attribute location with no buffer (e.g. missing vertex colours).
+  void setConstant(int location, float x, float y, float z, float w);
+  void setIndexBuffer(const Buffer& buffer, IndexType type);
+  void bind() const;
+  // Draws with the bound program: indexed when an index buffer is set, else arrays.
+  void draw(Primitive mode, int count, size_t firstOrByteOffset = 0) const;
+  GLuint id() const { return handle_.id(); }
+
+ private:
+  Handle<deleteVertexArray> handle_;
+  bool indexed_ = false;
+  IndexType indexType_ = IndexType::UInt32;
+  std::vector<std::pair<int, std::array<float, 4>>> constants_;
+};
+
+class Renderbuffer {
+ public:
+  Renderbuffer() = default;
+  static Result<Renderbuffer> create(int width, int height, PixelFormat format);
+  GLuint id() const { return handle_.id(); }
+  PixelFormat format() const { return format_; }
+
+ private:
+  Handle<deleteRenderbuffer> handle_;
+  PixelFormat format_ = PixelFormat::Depth24;
+};
+
+class Framebuffer {
+ public:
+  Framebuffer() = default;
+  static Framebuffer create();
+
+  void attachColor(int index, const Texture2D& texture, int level = 0);
+  void attachColor(int index, const TextureCube& cube, int face, int level);
+  void attachDepth(const Texture2D& texture);
+  void attachDepth(const Renderbuffer& renderbuffer);
+  // Enables draw buffers 0..count-1.
+  void setDrawBuffers(int count);
+  // Complete, or an error naming the status (e.g. GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT).
+  Status checkComplete() const;
+  void bind() const;
+  static void bindDefault();
+
+  // Reads RGBA float pixels of colour attachment `index` (row 0 = bottom, GL order).
+  std::vector<float> readRgbaFloat(int index, int x, int y, int width, int height) const;
+  std::vector<uint8_t> readRgba8(int index, int x, int y, int width, int height) const;
+  GLuint id() const { return handle_.id(); }
+
+ private:
+  Handle<deleteFramebuffer> handle_;
+};
+
+// GPU time of the commands between begin() and end(), where the context offers timer queries
+// (EXT_disjoint_timer_query on ES/WebGL, core on desktop GL). Unavailable elsewhere.
+class TimerQuery {
+ public:
+  TimerQuery() = default;
+  static std::optional<TimerQuery> create(bool supported);
+  void begin();
+  void end();
+  // Nanoseconds once the result is available (blocks until then); nullopt when disjoint.
+  std::optional<uint64_t> resultNs() const;
+
+ private:
+  Handle<deleteQuery> handle_;
+};
+
+// Fixed-function state of a pass, applied as a whole so passes never inherit stale state.
+enum class Blend { None, Additive, Alpha, PremultipliedAlpha };
+enum class Cull { None, Back, Front };
+enum class DepthTest { Off, Less, LessEqual, Equal, Always };
+
+struct PipelineState {
+  DepthTest depthTest = DepthTest::Less;
+  bool depthWrite = true;
+  Blend blend = Blend::None;
+  Cull cull = Cull::Back;
+  bool colorWrite = true;
+  float polygonOffsetFactor = 0.0f;  // slope-scaled depth bias (shadow maps)
+  float polygonOffsetUnits = 0.0f;
+};
+
+void apply(const PipelineState& state);
+void setViewport(int x, int y, int width, int height);
+void clearColor(float r, float g, float b, float a);
+void clearDepth(float depth = 1.0f);
+// Clears float colour attachment `index` of the bound framebuffer.
+void clearBufferFloat(int index, float r, float g, float b, float a);
+// Waits for the GPU (timing, read-back).
+void finish();
+void flush();
+
+}  // namespace penumbra::gl

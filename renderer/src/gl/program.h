@@ -1,0 +1,86 @@
+// Program: a move-only linked GLSL ES 3.00 program with cached uniform locations.
+// ShaderLibrary: composes shaders from the GLSL files embedded at build time (glsl/), adding
+// the shared prelude, resolved #include "chunk" lines and generated #defines, compiles them,
+// and caches each program by its files and defines. Compile and link errors come back as
+// errors that carry the info log with file names and lines of the original files.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/handle.h"
+#include "penumbra/error.h"
+
+namespace penumbra::gl {
+
+enum class ShaderStage { Vertex, Fragment };
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+// A composed shader: the text handed to GL and the file behind each source-string number.
+struct ShaderSource {
+  std::string name;  // the top-level file, for messages
+  ShaderStage stage = ShaderStage::Vertex;
+  std::string text;
+  std::vector<std::string> files;  // files[k] is source-string number k in #line directives
+};
+
+// Rewrites "0:12(5): error" / "ERROR: 2:7: ..." log lines to "file.glsl:12: error ...".
+std::string mapInfoLog(const std::string& log, const std::vector<std::string>& files);
+
+class Program {
+ public:
+  Program() = default;
+  static Result<Program> build(const ShaderSource& vertex, const ShaderSource& fragment);
+
+  void use() const;
+  // Uniform setters act on this program, which must be in use (call use() first).
+  GLint location(std::string_view name) const;
+  bool has(std::string_view name) const { return location(name) >= 0; }
+  void set(std::string_view name, int v) const;
+  void set(std::string_view name, float v) const;
+  void set(std::string_view name, const glm::vec2& v) const;
+  void set(std::string_view name, const glm::vec3& v) const;
+  void set(std::string_view name, const glm::vec4& v) const;
+  void set(std::string_view name, const glm::mat3& v) const;
+  void set(std::string_view name, const glm::mat4& v) const;
+  void set(std::string_view name, std::span<const glm::vec3> v) const;
+  void set(std::string_view name, std::span<const glm::vec4> v) const;
+  void set(std::string_view name, std::span<const glm::mat4> v) const;
+  GLuint id() const { return handle_.id(); }
+
+ private:
+  Handle<deleteProgram> handle_;
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
+
+class ShaderLibrary {
+ public:
+  // The files embedded from glsl/ at build time.
+  ShaderLibrary();
+  // Explicit files (tests use this to inject a broken shader).
+  explicit ShaderLibrary(std::map<std::string, std::string, std::less<>> files);
+
+  Result<ShaderSource> compose(std::string_view file, ShaderStage stage,
+                               const Defines& defines) const;
+  // The program for (vertex file, fragment file, defines), built on first use and cached.
+  Result<Program*> program(std::string_view vertexFile, std::string_view fragmentFile,
+                           const Defines& defines = {});
+  size_t cachedPrograms() const { return cache_.size(); }
+  bool hasFile(std::string_view file) const { return files_.count(file) != 0; }
+
+ private:
+  Status expand(std::string_view file, std::string& out, std::vector<std::string>& files,
+                std::vector<std::string>& stack) const;
+  std::map<std::string, std::string, std::less<>> files_;
+  std::map<std::string, std::unique_ptr<Program>, std::less<>> cache_;
+};
+
+}  // namespace penumbra::gl

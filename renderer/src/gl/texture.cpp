@@ -1,0 +1,201 @@
+#include "gl/texture.h"
+
+#include <algorithm>
+#include <string>
+
+#include "gl/errors.h"
+
+namespace penumbra::gl {
+namespace {
+
+struct FormatInfo {
+  GLenum internal;
+  GLenum format;
+  GLenum type;
+  int bytes;
+};
+
+FormatInfo info(PixelFormat f) {
+  switch (f) {
+    case PixelFormat::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case PixelFormat::SRGB8_ALPHA8: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case PixelFormat::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
+    case PixelFormat::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16};
+    case PixelFormat::RGB16F: return {GL_RGB16F, GL_RGB, GL_HALF_FLOAT, 6};
+    case PixelFormat::RG16F: return {GL_RG16F, GL_RG, GL_HALF_FLOAT, 4};
+    case PixelFormat::R32F: return {GL_R32F, GL_RED, GL_FLOAT, 4};
+    case PixelFormat::Depth24:
+      return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4};
+    case PixelFormat::Depth32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4};
+  }
+  return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+}
+
+GLenum uploadType(DataType t, PixelFormat f) {
+  switch (t) {
+    case DataType::UInt8: return GL_UNSIGNED_BYTE;
+    case DataType::Float: return GL_FLOAT;
+    case DataType::HalfFloat: return GL_HALF_FLOAT;
+  }
+  return info(f).type;
+}
+
+GLint glFilter(Filter f) {
+  switch (f) {
+    case Filter::Nearest: return GL_NEAREST;
+    case Filter::Linear: return GL_LINEAR;
+    case Filter::LinearMipLinear: return GL_LINEAR_MIPMAP_LINEAR;
+    case Filter::NearestMipNearest: return GL_NEAREST_MIPMAP_NEAREST;
+  }
+  return GL_LINEAR;
+}
+
+GLint glWrap(Wrap w) {
+  switch (w) {
+    case Wrap::Repeat: return GL_REPEAT;
+    case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+  }
+  return GL_CLAMP_TO_EDGE;
+}
+
+void applySampler(GLenum target, const SamplerState& s) {
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, glFilter(s.minFilter));
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER,
+                  s.magFilter == Filter::Nearest ? GL_NEAREST : GL_LINEAR);
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, glWrap(s.wrapS));
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, glWrap(s.wrapT));
+  if (target == GL_TEXTURE_CUBE_MAP) {
+    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  }
+  if (s.depthCompare) {
+    glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  } else {
+    glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  }
+}
+
+Status validate(const TextureDesc& d, bool cube) {
+  GLint maxSize = 0;
+  glGetIntegerv(cube ? GL_MAX_CUBE_MAP_TEXTURE_SIZE : GL_MAX_TEXTURE_SIZE, &maxSize);
+  const int h = cube ? d.width : d.height;
+  if (d.width <= 0 || h <= 0 || d.width > maxSize || h > maxSize) {
+    return makeError("texture size " + std::to_string(d.width) + "x" + std::to_string(h) +
+                     " is outside 1.." + std::to_string(maxSize) + " (this GPU's limit)");
+  }
+  if (d.levels < 1 || d.levels > fullMipCount(d.width, h)) {
+    return makeError("texture level count " + std::to_string(d.levels) + " is invalid for " +
+                     std::to_string(d.width) + "x" + std::to_string(h));
+  }
+  return {};
+}
+
+}  // namespace
+
+const char* formatName(PixelFormat format) {
+  switch (format) {
+    case PixelFormat::RGBA8: return "RGBA8";
+    case PixelFormat::SRGB8_ALPHA8: return "SRGB8_ALPHA8";
+    case PixelFormat::RGBA16F: return "RGBA16F";
+    case PixelFormat::RGBA32F: return "RGBA32F";
+    case PixelFormat::RGB16F: return "RGB16F";
+    case PixelFormat::RG16F: return "RG16F";
+    case PixelFormat::R32F: return "R32F";
+    case PixelFormat::Depth24: return "DEPTH_COMPONENT24";
+    case PixelFormat::Depth32F: return "DEPTH_COMPONENT32F";
+  }
+  return "?";
+}
+
+int bytesPerPixel(PixelFormat format) { return info(format).bytes; }
+bool isDepthFormat(PixelFormat f) { return f == PixelFormat::Depth24 || f == PixelFormat::Depth32F; }
+
+int fullMipCount(int width, int height) {
+  int n = 1;
+  for (int s = std::max(width, height); s > 1; s >>= 1) ++n;
+  return n;
+}
+
+Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
+  PN_TRY(validate(desc, false));
+  clearErrors();
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  Texture2D t;
+  t.handle_ = Handle<deleteTexture>(id);
+  t.desc_ = desc;
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexStorage2D(GL_TEXTURE_2D, desc.levels, info(desc.format).internal, desc.width, desc.height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
+  applySampler(GL_TEXTURE_2D, desc.sampler);
+  PN_TRY(checkError(std::string("allocating a ") + std::to_string(desc.width) + "x" +
+                    std::to_string(desc.height) + " " + formatName(desc.format) + " texture"));
+  return t;
+}
+
+void Texture2D::upload(int level, const void* data, DataType type) {
+  PN_CHECK(handle_ && level >= 0 && level < desc_.levels, "upload to a missing texture level");
+  const FormatInfo fi = info(desc_.format);
+  glBindTexture(GL_TEXTURE_2D, handle_.id());
+  glTexSubImage2D(GL_TEXTURE_2D, level, 0, 0, std::max(1, desc_.width >> level),
+                  std::max(1, desc_.height >> level), fi.format, uploadType(type, desc_.format),
+                  data);
+}
+
+void Texture2D::generateMipmaps() {
+  glBindTexture(GL_TEXTURE_2D, handle_.id());
+  glGenerateMipmap(GL_TEXTURE_2D);
+}
+
+void Texture2D::setSampler(const SamplerState& sampler) {
+  desc_.sampler = sampler;
+  glBindTexture(GL_TEXTURE_2D, handle_.id());
+  applySampler(GL_TEXTURE_2D, sampler);
+}
+
+void Texture2D::bind(int unit) const {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, handle_.id());
+}
+
+Result<TextureCube> TextureCube::create(const TextureDesc& desc) {
+  PN_TRY(validate(desc, true));
+  clearErrors();
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  TextureCube t;
+  t.handle_ = Handle<deleteTexture>(id);
+  t.desc_ = desc;
+  t.desc_.height = desc.width;
+  glBindTexture(GL_TEXTURE_CUBE_MAP, id);
+  glTexStorage2D(GL_TEXTURE_CUBE_MAP, desc.levels, info(desc.format).internal, desc.width,
+                 desc.width);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
+  applySampler(GL_TEXTURE_CUBE_MAP, desc.sampler);
+  PN_TRY(checkError("allocating a " + std::to_string(desc.width) + " px cube map"));
+  return t;
+}
+
+void TextureCube::upload(int face, int level, const void* data, DataType type) {
+  PN_CHECK(handle_ && face >= 0 && face < 6 && level >= 0 && level < desc_.levels,
+           "upload to a missing cube face or level");
+  const FormatInfo fi = info(desc_.format);
+  const int s = std::max(1, desc_.width >> level);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, handle_.id());
+  glTexSubImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, level, 0, 0, s, s, fi.format,
+                  uploadType(type, desc_.format), data);
+}
+
+void TextureCube::setSampler(const SamplerState& sampler) {
+  desc_.sampler = sampler;
+  glBindTexture(GL_TEXTURE_CUBE_MAP, handle_.id());
+  applySampler(GL_TEXTURE_CUBE_MAP, sampler);
+}
+
+void TextureCube::bind(int unit) const {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, handle_.id());
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,98 @@
+// Texture2D and TextureCube: move-only owners of GL textures with explicit formats, mip levels
+// and sampling state. Formats are limited to what OpenGL ES 3.0 / WebGL2 offer.
+#pragma once
+
+#include <cstdint>
+
+#include "gl/handle.h"
+#include "penumbra/error.h"
+
+namespace penumbra::gl {
+
+enum class PixelFormat {
+  RGBA8,        // UNORM, colour textures stored linear
+  SRGB8_ALPHA8, // colour textures in sRGB (base colour, emissive)
+  RGBA16F,
+  RGBA32F,
+  RGB16F,       // filterable HDR textures (environment)
+  RG16F,
+  R32F,
+  Depth24,      // DEPTH_COMPONENT24
+  Depth32F,     // DEPTH_COMPONENT32F
+};
+
+enum class DataType { UInt8, Float, HalfFloat };
+enum class Filter { Nearest, Linear, LinearMipLinear, NearestMipNearest };
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+
+const char* formatName(PixelFormat format);
+int bytesPerPixel(PixelFormat format);
+bool isDepthFormat(PixelFormat format);
+
+struct SamplerState {
+  Filter minFilter = Filter::Linear;
+  Filter magFilter = Filter::Linear;
+  Wrap wrapS = Wrap::ClampToEdge;
+  Wrap wrapT = Wrap::ClampToEdge;
+  // Depth textures only: sample with a comparison (sampler2DShadow, hardware PCF).
+  bool depthCompare = false;
+};
+
+struct TextureDesc {
+  int width = 0;
+  int height = 0;  // ignored for cube maps (faces are square)
+  PixelFormat format = PixelFormat::RGBA8;
+  int levels = 1;  // mip levels allocated (immutable storage)
+  SamplerState sampler;
+};
+
+class Texture2D {
+ public:
+  Texture2D() = default;
+  // Allocates immutable storage for all levels. Errors on absurd sizes or GL out-of-memory.
+  static Result<Texture2D> create(const TextureDesc& desc);
+
+  // Uploads a whole level; `data` holds width x height pixels of the format's channels.
+  void upload(int level, const void* data, DataType type);
+  void generateMipmaps();
+  void setSampler(const SamplerState& sampler);
+  void bind(int unit) const;
+
+  GLuint id() const { return handle_.id(); }
+  int width() const { return desc_.width; }
+  int height() const { return desc_.height; }
+  int levels() const { return desc_.levels; }
+  PixelFormat format() const { return desc_.format; }
+  explicit operator bool() const { return static_cast<bool>(handle_); }
+
+ private:
+  Handle<deleteTexture> handle_;
+  TextureDesc desc_;
+};
+
+class TextureCube {
+ public:
+  TextureCube() = default;
+  // desc.width is the face size; desc.levels the number of explicit mip levels.
+  static Result<TextureCube> create(const TextureDesc& desc);
+
+  // face: 0..5 in GL order +X, -X, +Y, -Y, +Z, -Z.
+  void upload(int face, int level, const void* data, DataType type);
+  void setSampler(const SamplerState& sampler);
+  void bind(int unit) const;
+
+  GLuint id() const { return handle_.id(); }
+  int size() const { return desc_.width; }
+  int levels() const { return desc_.levels; }
+  PixelFormat format() const { return desc_.format; }
+  explicit operator bool() const { return static_cast<bool>(handle_); }
+
+ private:
+  Handle<deleteTexture> handle_;
+  TextureDesc desc_;
+};
+
+// Number of mip levels of a full chain for a size.
+int fullMipCount(int width, int height);
+
+}  // namespace penumbra::gl
