@@ -1,0 +1,87 @@
+// glTF metallic-roughness material inputs: factors, the five texture slots (each with its UV
+// set and KHR_texture_transform matrix), vertex colour, alpha modes, normal mapping.
+uniform vec4 uBaseColorFactor;
+uniform float uMetallicFactor;
+uniform float uRoughnessFactor;
+uniform vec3 uEmissive;  // emissiveFactor * emissive_strength
+uniform float uNormalScale;
+uniform float uOcclusionStrength;
+uniform int uAlphaMode;  // 0 opaque, 1 mask, 2 blend
+uniform float uAlphaCutoff;
+uniform int uTextureMask;   // bit i: slot i has a texture
+uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
+uniform mat3 uUvTransform[5];
+uniform sampler2D uBaseColorTex;
+uniform sampler2D uMetallicRoughnessTex;
+uniform sampler2D uNormalTex;
+uniform sampler2D uOcclusionTex;
+uniform sampler2D uEmissiveTex;
+
+const int SLOT_BASE = 0;
+const int SLOT_MR = 1;
+const int SLOT_NORMAL = 2;
+const int SLOT_OCCLUSION = 3;
+const int SLOT_EMISSIVE = 4;
+
+in vec3 vWorldPos;
+in vec3 vNormal;
+in vec4 vTangent;
+in vec2 vUv0;
+in vec2 vUv1;
+in vec4 vColor;
+
+struct SurfaceInputs {
+  vec4 baseColor;
+  float metallic;
+  float perceptualRoughness;
+  vec3 emissive;
+  float occlusion;
+  vec3 normal;  // world, facing the viewer for double-sided materials
+};
+
+bool hasTexture(int slot) { return (uTextureMask & (1 << slot)) != 0; }
+
+vec2 slotUv(int slot) {
+  vec2 uv = (uTexCoordMask & (1 << slot)) != 0 ? vUv1 : vUv0;
+  return (uUvTransform[slot] * vec3(uv, 1.0)).xy;
+}
+
+SurfaceInputs readSurface(vec3 viewDir) {
+  SurfaceInputs s;
+  s.baseColor = uBaseColorFactor * vColor;
+  if (hasTexture(SLOT_BASE)) s.baseColor *= texture(uBaseColorTex, slotUv(SLOT_BASE));
+  if (uAlphaMode == 1 && s.baseColor.a < uAlphaCutoff) discard;
+  if (uAlphaMode == 0) s.baseColor.a = 1.0;
+  s.metallic = uMetallicFactor;
+  s.perceptualRoughness = uRoughnessFactor;
+  if (hasTexture(SLOT_MR)) {
+    vec4 mr = texture(uMetallicRoughnessTex, slotUv(SLOT_MR));
+    s.perceptualRoughness *= mr.g;
+    s.metallic *= mr.b;
+  }
+  s.metallic = saturate(s.metallic);
+  s.perceptualRoughness = clamp(s.perceptualRoughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  s.emissive = uEmissive;
+  if (hasTexture(SLOT_EMISSIVE)) s.emissive *= texture(uEmissiveTex, slotUv(SLOT_EMISSIVE)).rgb;
+  s.occlusion = 1.0;
+  if (hasTexture(SLOT_OCCLUSION)) {
+    s.occlusion = 1.0 + uOcclusionStrength *
+                            (texture(uOcclusionTex, slotUv(SLOT_OCCLUSION)).r - 1.0);
+  }
+  vec3 n = normalize(vNormal);
+  // Back faces of double-sided materials shade with the flipped normal.
+  bool flip = !gl_FrontFacing;
+  if (flip) n = -n;
+  if (hasTexture(SLOT_NORMAL) && dot(vTangent.xyz, vTangent.xyz) > 1e-10) {
+    // Back faces negate the whole tangent frame (as the Khronos sample viewer does).
+    vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
+    if (flip) t = -t;
+    vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+    if (flip) b = -b;
+    vec3 tn = texture(uNormalTex, slotUv(SLOT_NORMAL)).xyz * 2.0 - 1.0;
+    tn.xy *= uNormalScale;
+    n = normalize(mat3(t, b, n) * tn);
+  }
+  s.normal = n;
+  return s;
+}

@@ -1,0 +1,38 @@
+// Sampling used by progressive occlusion; mirrors renderer/src/ibl/sampling.h, where each
+// function sits next to its PDF and is tested.
+uniform vec2 uSequence;  // this frame's point of the low-discrepancy sequence, in [0, 1)^2
+
+// Interleaved gradient noise (Jimenez 2014): a cheap per-pixel offset with blue-ish spectrum.
+float interleavedGradientNoise(vec2 pixel) {
+  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
+
+// The frame's sequence point, Cranley-Patterson rotated per pixel so neighbouring pixels and
+// successive frames are decorrelated while each pixel still walks the sequence.
+vec2 pixelSample(vec2 pixel, float stream) {
+  vec2 rot = vec2(interleavedGradientNoise(pixel + stream * 17.0),
+                  interleavedGradientNoise(pixel.yx + 31.0 + stream * 5.0));
+  return fract(uSequence + rot);
+}
+
+// Cosine-weighted hemisphere direction around +Z; pdf = cos(theta) / pi.
+vec3 sampleCosineHemisphere(vec2 u) {
+  float r = sqrt(u.x);
+  float phi = 2.0 * PI * u.y;
+  return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u.x)));
+}
+
+// GGX normal distribution sample (half vector around +Z); pdf = D(h) cos(theta_h).
+vec3 sampleGgxHalfVector(vec2 u, float alpha) {
+  float a2 = alpha * alpha;
+  float cosTheta = sqrt((1.0 - u.x) / (1.0 + (a2 - 1.0) * u.x));
+  float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+  float phi = 2.0 * PI * u.y;
+  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+mat3 tangentFrame(vec3 n) {
+  vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+  vec3 t = normalize(cross(up, n));
+  return mat3(t, cross(n, t), n);
+}

@@ -1,0 +1,25 @@
+// Shadow maps of this frame's area-light samples: each is rendered from one point on the
+// light's surface; a 2x2 hardware PCF lookup gives that sample's visibility.
+uniform highp sampler2DShadow uShadowMap0;
+uniform highp sampler2DShadow uShadowMap1;
+uniform highp sampler2DShadow uShadowMap2;
+uniform highp sampler2DShadow uShadowMap3;
+uniform mat4 uShadowMatrix[4];  // world -> shadow texture space [0, 1]^3
+uniform vec4 uShadowParams[4];  // x: normal-offset bias in world units, y: texel size
+
+float sampleShadowMap(int index, vec3 coord) {
+  if (index == 0) return texture(uShadowMap0, coord);
+  if (index == 1) return texture(uShadowMap1, coord);
+  if (index == 2) return texture(uShadowMap2, coord);
+  return texture(uShadowMap3, coord);
+}
+
+float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
+  if (index < 0) return 1.0;
+  vec3 p = worldPos + normal * uShadowParams[index].x;
+  vec4 c = uShadowMatrix[index] * vec4(p, 1.0);
+  if (c.w <= 0.0) return 1.0;  // behind the light sample: nothing there to block
+  vec3 s = c.xyz / c.w;
+  if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
+  return sampleShadowMap(index, s);
+}

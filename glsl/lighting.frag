@@ -1,0 +1,124 @@
+// Forward shading of one intermediate frame: split-sum environment light (with this frame's
+// occlusion sample once the prepass exists), this frame's area-light samples (each weighted by
+// the sample distributor and shadowed by its own shadow map), punctual lights and emission.
+#include "chunks/brdf.glsl"
+#include "chunks/material.glsl"
+#include "chunks/environment.glsl"
+#include "chunks/area_lights.glsl"
+#include "chunks/sampling.glsl"
+#include "chunks/occlusion.glsl"
+#include "chunks/shadows.glsl"
+
+const int MAX_AREA = 8;
+const int MAX_PUNCTUAL = 8;
+
+uniform vec3 uCameraPos;
+uniform float uEnvWeight;  // weight of the environment term in this frame (0 or 1)
+
+uniform int uAreaCount;
+uniform vec3 uAreaPos[MAX_AREA];
+uniform vec3 uAreaDir[MAX_AREA];
+uniform vec3 uAreaRight[MAX_AREA];
+uniform vec3 uAreaUp[MAX_AREA];
+uniform vec4 uAreaShape[MAX_AREA];     // width, height, 1 = disk, shadow map index (-1 none)
+uniform vec3 uAreaRadiance[MAX_AREA];  // colour * luminance * sample weight
+
+uniform int uPunctualCount;
+uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 directional
+uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
+uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
+uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
+
+out vec4 fragColor;
+
+void main() {
+  vec3 v = normalize(uCameraPos - vWorldPos);
+  SurfaceInputs s = readSurface(v);
+  vec3 n = s.normal;
+  float NoV = max(dot(n, v), 1e-4);
+  vec3 diffuseColor = s.baseColor.rgb * (1.0 - s.metallic);
+  vec3 f0 = mix(vec3(0.04), s.baseColor.rgb, s.metallic);
+  float alpha = s.perceptualRoughness * s.perceptualRoughness;
+  vec3 dfgTerms = dfg(NoV, s.perceptualRoughness);
+  vec3 specularScale = (f0 * dfgTerms.x + dfgTerms.y) * (1.0 + f0 * (1.0 / dfgTerms.z - 1.0));
+
+  vec3 color = vec3(0.0);
+
+  // Environment.
+  if (uEnvWeight > 0.0) {
+    vec3 irradiance = envIrradiance(n);
+    vec3 r = reflect(-v, n);
+    vec3 prefiltered = envRadiance(r, s.perceptualRoughness);
+    if (uOcclusionEnabled) {
+      mat3 frame = tangentFrame(n);
+      vec2 pixel = gl_FragCoord.xy;
+      vec3 hit;
+      // Diffuse: one cosine-weighted direction. E/pi is the unoccluded estimate of the
+      // cosine-weighted radiance; a blocked direction contributes the hit's radiance instead.
+      vec3 dDir = frame * sampleCosineHemisphere(pixelSample(pixel, 0.0));
+      if (traceOcclusion(vWorldPos, dDir, interleavedGradientNoise(pixel + 7.0), hit)) {
+        irradiance = hit * PI;
+      }
+      // Specular: one GGX half vector, reflected.
+      vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
+      vec3 sDir = reflect(-v, h);
+      if (dot(sDir, n) > 0.0 &&
+          traceOcclusion(vWorldPos, sDir, interleavedGradientNoise(pixel + 3.0), hit)) {
+        prefiltered = hit;
+      }
+    }
+    color += uEnvWeight * s.occlusion *
+             (diffuseColor * irradiance * INV_PI + prefiltered * specularScale);
+  }
+
+  // Area-light samples.
+  for (int i = 0; i < MAX_AREA; ++i) {
+    if (i >= uAreaCount) break;
+    AreaLight L;
+    L.position = uAreaPos[i];
+    L.direction = uAreaDir[i];
+    L.right = uAreaRight[i];
+    L.up = uAreaUp[i];
+    L.size = uAreaShape[i].xy;
+    L.disk = uAreaShape[i].z > 0.5;
+    float irradiance;
+    vec3 specular;
+    evaluateAreaLight(L, vWorldPos, n, v, f0, alpha, irradiance, specular);
+    if (irradiance <= 0.0) continue;
+    float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
+    color += uAreaRadiance[i] * visibility * (diffuseColor * irradiance * INV_PI + specular);
+  }
+
+  // Punctual lights (KHR_lights_punctual), unshadowed.
+  for (int i = 0; i < MAX_PUNCTUAL; ++i) {
+    if (i >= uPunctualCount) break;
+    vec3 l;
+    float attenuation = 1.0;
+    int type = int(uPunctualPos[i].w);
+    if (type == 2) {
+      l = -uPunctualDir[i].xyz;
+    } else {
+      vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
+      float d2 = max(dot(toLight, toLight), 1e-8);
+      l = toLight * inversesqrt(d2);
+      attenuation = 1.0 / d2;
+      float range = uPunctualDir[i].w;
+      if (range > 0.0) {
+        float x = d2 / (range * range);
+        attenuation *= saturate(1.0 - x * x);
+      }
+      if (type == 1) {
+        float cd = dot(uPunctualDir[i].xyz, -l);
+        float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
+        attenuation *= a * a;
+      }
+    }
+    float NoL = dot(n, l);
+    if (NoL <= 0.0) continue;
+    vec3 e = uPunctualColor[i] * attenuation * NoL;
+    color += e * (diffuseColor * INV_PI + specularBrdf(n, v, l, f0, alpha, 1.0));
+  }
+
+  color += s.emissive * uEnvWeight;
+  fragColor = vec4(color, s.baseColor.a);
+}

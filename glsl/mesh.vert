@@ -1,0 +1,30 @@
+// Geometry of every scene pass (prepass, lighting). The projection carries the frame's
+// sub-pixel jitter.
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec4 aTangent;
+layout(location = 3) in vec2 aUv0;
+layout(location = 4) in vec2 aUv1;
+layout(location = 5) in vec4 aColor;
+
+uniform mat4 uModel;
+uniform mat3 uNormalMatrix;
+uniform mat4 uViewProj;
+
+out vec3 vWorldPos;
+out vec3 vNormal;
+out vec4 vTangent;
+out vec2 vUv0;
+out vec2 vUv1;
+out vec4 vColor;
+
+void main() {
+  vec4 world = uModel * vec4(aPosition, 1.0);
+  vWorldPos = world.xyz;
+  vNormal = uNormalMatrix * aNormal;
+  vTangent = vec4(mat3(uModel) * aTangent.xyz, aTangent.w);
+  vUv0 = aUv0;
+  vUv1 = aUv1;
+  vColor = aColor;
+  gl_Position = uViewProj * world;
+}

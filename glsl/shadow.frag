@@ -1,0 +1,2 @@
+// Shadow maps store depth only.
+void main() {}

@@ -1,0 +1,38 @@
+#include "progressive/controller.h"
+
+namespace penumbra::progressive {
+
+void Controller::setSettings(const ProgressiveSettings& settings) {
+  if (settings == settings_) return;
+  settings_ = settings;
+  planValid_ = false;
+  next_ = 1;
+}
+
+void Controller::setLights(const std::vector<LightInfo>& lights) {
+  bool same = lights.size() == lights_.size();
+  for (size_t i = 0; same && i < lights.size(); ++i) {
+    same = lights[i].shape == lights_[i].shape && lights[i].aspect == lights_[i].aspect;
+  }
+  if (same) return;
+  lights_ = lights;
+  planValid_ = false;
+  next_ = 1;
+}
+
+const std::vector<FramePlan>& Controller::plan() {
+  if (!planValid_) {
+    plan_ = distributeSamples(settings_, lights_);
+    planValid_ = true;
+  }
+  return plan_;
+}
+
+Result<int> Controller::step(FrameRenderer& renderer) {
+  if (converged()) return 0;
+  const FramePlan& frame = plan()[static_cast<size_t>(next_ - 1)];
+  PN_TRY(renderer.renderFrame(frame));
+  return next_++;
+}
+
+}  // namespace penumbra::progressive
