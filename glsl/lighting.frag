@@ -56,14 +56,14 @@ void main() {
       // Diffuse: one cosine-weighted direction. E/pi is the unoccluded estimate of the
       // cosine-weighted radiance; a blocked direction contributes the hit's radiance instead.
       vec3 dDir = frame * sampleCosineHemisphere(pixelSample(pixel, 0.0));
-      if (traceOcclusion(vWorldPos, dDir, interleavedGradientNoise(pixel + 7.0), hit)) {
+      if (traceOcclusion(vWorldPos, dDir, fract(uSequence.x * 7.0 + hash2(pixel, 5u).x), hit)) {
         irradiance = hit * PI;
       }
       // Specular: one GGX half vector, reflected.
       vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
       vec3 sDir = reflect(-v, h);
       if (dot(sDir, n) > 0.0 &&
-          traceOcclusion(vWorldPos, sDir, interleavedGradientNoise(pixel + 3.0), hit)) {
+          traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {
         prefiltered = hit;
       }
     }
@@ -120,5 +120,8 @@ void main() {
   }
 
   color += s.emissive * uEnvWeight;
-  fragColor = vec4(color, s.baseColor.a);
+  // Alpha marks what screen-space indirect light may reuse: emitters are excluded (their light
+  // is already counted by the analytic area lights), and extra light batches add nothing.
+  float reusable = max(s.emissive.r, max(s.emissive.g, s.emissive.b)) > 0.0 ? 0.0 : 1.0;
+  fragColor = vec4(color, uEnvWeight * (uAlphaMode == 2 ? s.baseColor.a : reusable));
 }

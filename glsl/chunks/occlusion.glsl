@@ -36,7 +36,8 @@ bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
       if (uIndirectEnabled) {
         // Only surfaces that face the shading point send light back toward it.
         float facing = dot(g.xyz, -vd);
-        hitRadiance = facing > 0.0 ? texture(uAccumulated, uv).rgb : vec3(0.0);
+        vec4 acc = texture(uAccumulated, uv);
+        hitRadiance = facing > 0.0 ? acc.rgb * saturate(acc.a) : vec3(0.0);
       }
       return true;
     }

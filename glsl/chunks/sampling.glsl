@@ -7,12 +7,29 @@ float interleavedGradientNoise(vec2 pixel) {
   return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
-// The frame's sequence point, Cranley-Patterson rotated per pixel so neighbouring pixels and
-// successive frames are decorrelated while each pixel still walks the sequence.
+// PCG-based 2D hash (Jarzynski & Olano 2020): uncorrelated values per pixel, no pattern.
+uvec2 pcg2d(uvec2 v) {
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * 1664525u;
+  v.y += v.x * 1664525u;
+  v = v ^ (v >> 16u);
+  v.x += v.y * 1664525u;
+  v.y += v.x * 1664525u;
+  v = v ^ (v >> 16u);
+  return v;
+}
+
+vec2 hash2(vec2 pixel, uint stream) {
+  uvec2 h = pcg2d(uvec2(pixel) + uvec2(stream * 7919u, stream * 104729u));
+  return vec2(h >> 8u) * (1.0 / 16777216.0);
+}
+
+// The frame's sequence point, Cranley-Patterson rotated by a fixed per-pixel offset: each
+// pixel walks the low-discrepancy sequence over the frames, and neighbouring pixels are
+// decorrelated (a structured offset such as interleaved gradient noise leaves visible
+// patterns in the converging image).
 vec2 pixelSample(vec2 pixel, float stream) {
-  vec2 rot = vec2(interleavedGradientNoise(pixel + stream * 17.0),
-                  interleavedGradientNoise(pixel.yx + 31.0 + stream * 5.0));
-  return fract(uSequence + rot);
+  return fract(uSequence + hash2(pixel, uint(stream) + 1u));
 }
 
 // Cosine-weighted hemisphere direction around +Z; pdf = cos(theta) / pi.

@@ -5,7 +5,8 @@ uniform highp sampler2DShadow uShadowMap1;
 uniform highp sampler2DShadow uShadowMap2;
 uniform highp sampler2DShadow uShadowMap3;
 uniform mat4 uShadowMatrix[4];  // world -> shadow texture space [0, 1]^3
-uniform vec4 uShadowParams[4];  // x: normal-offset bias in world units, y: texel size
+uniform vec4 uShadowParams[4];  // x: constant normal offset (world units), y: offset per
+                                // unit of distance from the light (about 1.5 texel angles)
 
 float sampleShadowMap(int index, vec3 coord) {
   if (index == 0) return texture(uShadowMap0, coord);
@@ -16,7 +17,9 @@ float sampleShadowMap(int index, vec3 coord) {
 
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
   if (index < 0) return 1.0;
-  vec3 p = worldPos + normal * uShadowParams[index].x;
+  // Normal-offset bias grows with the texel footprint, which grows with distance.
+  float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);
+  vec3 p = worldPos + normal * (uShadowParams[index].x + uShadowParams[index].y * dist);
   vec4 c = uShadowMatrix[index] * vec4(p, 1.0);
   if (c.w <= 0.0) return 1.0;  // behind the light sample: nothing there to block
   vec3 s = c.xyz / c.w;

@@ -300,6 +300,7 @@ void apply(const PipelineState& s) {
       glCullFace(GL_FRONT);
       break;
   }
+  glFrontFace(s.frontFaceClockwise ? GL_CW : GL_CCW);
   const GLboolean c = s.colorWrite ? GL_TRUE : GL_FALSE;
   glColorMask(c, c, c, c);
   if (s.polygonOffsetFactor != 0.0f || s.polygonOffsetUnits != 0.0f) {

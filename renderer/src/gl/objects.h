@@ -126,6 +126,7 @@ struct PipelineState {
   bool depthWrite = true;
   Blend blend = Blend::None;
   Cull cull = Cull::Back;
+  bool frontFaceClockwise = false;  // mirrored transforms flip the winding
   bool colorWrite = true;
   float polygonOffsetFactor = 0.0f;  // slope-scaled depth bias (shadow maps)
   float polygonOffsetUnits = 0.0f;

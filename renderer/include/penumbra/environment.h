@@ -1,0 +1,27 @@
+// Environment loading for the renderer: a packed file from penumbra-prefilter (one request,
+// already filtered), or an HDR panorama that is prefiltered on load (slower; smaller faces),
+// or a constant environment for tests and scenes without one.
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "penumbra/environment_format.h"
+#include "penumbra/error.h"
+
+namespace penumbra {
+
+struct EnvironmentLoadOptions {
+  int faceSize = 128;  // for panoramas prefiltered on load
+  int samples = 64;
+};
+
+// True when the file starts like a packed environment (a Radiance header with PENUMBRA_ENV).
+bool isPackedEnvironmentFile(const std::string& path);
+Result<PackedEnvironment> loadEnvironment(const std::string& path,
+                                          const EnvironmentLoadOptions& options = {});
+// A uniform environment of the given radiance (white furnace, or a neutral default).
+PackedEnvironment uniformEnvironment(const glm::vec3& radiance, int faceSize = 8);
+
+}  // namespace penumbra

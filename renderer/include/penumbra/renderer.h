@@ -1,0 +1,71 @@
+// Renderer: Penumbra's progressive renderer. Give it a scene, an environment, a camera and
+// settings; each step() draws and accumulates one cheap intermediate frame chosen by the
+// progressive controller (frame 1: environment only; depth/normal prepass at frame 2; area
+// lights with one shadow map per light sample from frame floor(m f_d)), until frame m.
+// readRadiance() gives the linear running mean, readDisplay() the exposed, tone-mapped image.
+// Needs a current GL context (GlContext::create) for its whole life.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "penumbra/environment_format.h"
+#include "penumbra/error.h"
+#include "penumbra/frame_plan.h"
+#include "penumbra/image.h"
+#include "penumbra/scene.h"
+#include "penumbra/settings.h"
+
+namespace penumbra {
+
+struct RendererOptions {
+  bool desktopGl = false;       // GlContext::isDesktopGl()
+  bool forceHalfFloat = false;  // accumulate in RGBA16F even where RGBA32F is renderable
+};
+
+// What the last frame did, for tests, benchmarks and progress displays.
+struct FrameStats {
+  int frame = 0;
+  int shadowPasses = 0;
+  int lightingPasses = 0;
+  bool prepass = false;
+  bool occlusion = false;
+};
+
+class Renderer {
+ public:
+  static Result<std::unique_ptr<Renderer>> create(const RendererOptions& options = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  Status setScene(const Scene& scene);
+  Status setEnvironment(const PackedEnvironment& environment);
+  void setCamera(const Camera& camera);
+  Status setSettings(const RenderSettings& settings);
+
+  // Draws the next intermediate frame; returns its number, or 0 once frame m is done.
+  Result<int> step();
+  // Restarts accumulation at frame 1 (the controller does this on any change).
+  void restart();
+  bool converged() const;
+  int framesDone() const;
+  int totalFrames() const;
+  const FrameStats& lastFrame() const;
+
+  // The running mean of linear radiance (before exposure), RGBA float, row 0 at the top.
+  Result<Image> readRadiance();
+  // The displayed image: exposure, tone mapping and sRGB applied, RGBA in [0, 1].
+  Result<Image> readDisplay();
+
+  // The accumulation format in use and the capability report, for logs.
+  std::string capabilityReport() const;
+  const RenderSettings& settings() const;
+
+ private:
+  Renderer();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace penumbra

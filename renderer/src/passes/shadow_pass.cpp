@@ -1,0 +1,110 @@
+#include "passes/shadow_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace penumbra::passes {
+
+ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
+                         const glm::vec3& upHint, const Bounds& bounds, int mapSize) {
+  glm::vec3 up = upHint;
+  if (std::abs(glm::dot(glm::normalize(up), direction)) > 0.99f) {
+    up = std::abs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  }
+  const glm::mat4 view = glm::lookAt(origin, origin + direction, up);
+  const float radius = bounds.valid() ? std::max(bounds.radius(), 1e-3f) : 1.0f;
+  const float maxTan = std::tan(glm::radians(75.0f));
+  float tanHalf = 0.05f, farDist = 1e-3f;
+  if (bounds.valid()) {
+    for (int c = 0; c < 8; ++c) {
+      glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                       (c & 4) ? bounds.max.z : bounds.min.z);
+      glm::vec3 v = glm::vec3(view * glm::vec4(corner, 1.0f));
+      farDist = std::max(farDist, glm::length(v));
+      const float depth = -v.z;
+      if (depth <= 1e-6f) {
+        tanHalf = maxTan;  // a corner beside or behind the emitting plane: widest frustum
+      } else {
+        tanHalf = std::max(tanHalf, std::max(std::abs(v.x), std::abs(v.y)) / depth);
+      }
+    }
+  } else {
+    farDist = 10.0f;
+    tanHalf = maxTan;
+  }
+  tanHalf = std::min(tanHalf * 1.02f, maxTan);
+  const float nearDist = std::max(1e-3f * radius, 1e-4f);
+  farDist = farDist * 1.01f + nearDist;
+  const glm::mat4 proj = glm::perspective(2.0f * std::atan(tanHalf), 1.0f, nearDist, farDist);
+  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  ShadowView sv;
+  sv.matrix = bias * proj * view;
+  const float texelAngle = 2.0f * tanHalf / static_cast<float>(mapSize);
+  sv.params = glm::vec4(2e-4f * radius, 1.5f * texelAngle, 0.0f, 0.0f);
+  return sv;
+}
+
+Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
+  ShadowPass pass;
+  auto program = library.program("shadow.vert", "shadow.frag");
+  if (!program) return program.error();
+  pass.program_ = *program;
+  pass.size_ = mapSize;
+  for (int i = 0; i < kMaxShadowMaps; ++i) {
+    auto tex = gl::Texture2D::create({.width = mapSize,
+                                      .height = mapSize,
+                                      .format = gl::PixelFormat::Depth24,
+                                      .sampler = {.minFilter = gl::Filter::Linear,
+                                                  .magFilter = gl::Filter::Linear,
+                                                  .depthCompare = true}});
+    if (!tex) return makeError("shadow map: " + tex.message());
+    pass.maps_[static_cast<size_t>(i)] = std::move(*tex);
+    gl::Framebuffer fb = gl::Framebuffer::create();
+    fb.attachDepth(pass.maps_[static_cast<size_t>(i)]);
+    fb.setDrawBuffers(0);
+    PN_TRY(fb.checkComplete());
+    pass.framebuffers_[static_cast<size_t>(i)] = std::move(fb);
+  }
+  gl::Framebuffer::bindDefault();
+  return pass;
+}
+
+ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& origin,
+                              const glm::vec3& direction, const glm::vec3& upHint) {
+  ShadowView sv = fitShadowView(origin, direction, upHint, scene.bounds(), size_);
+  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  const glm::mat4 viewProj = glm::inverse(bias) * sv.matrix;
+  framebuffers_[static_cast<size_t>(slot)].bind();
+  gl::setViewport(0, 0, size_, size_);
+  gl::clearDepth(1.0f);
+  program_->use();
+  program_->set("uViewProj", viewProj);
+  // Both faces cast: open meshes and single-sided walls must still block light.
+  for (const auto* list : {&scene.opaque(), &scene.blended()}) {
+    for (const DrawItem& item : *list) {
+      gl::apply({.depthTest = gl::DepthTest::Less,
+                 .depthWrite = true,
+                 .cull = gl::Cull::None,
+                 .colorWrite = false,
+                 .polygonOffsetFactor = 1.5f,
+                 .polygonOffsetUnits = 2.0f});
+      program_->set("uModel", item.model);
+      item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+    }
+  }
+  return sv;
+}
+
+void ShadowPass::bind(const gl::Program& program, int firstUnit) const {
+  for (int i = 0; i < kMaxShadowMaps; ++i) {
+    maps_[static_cast<size_t>(i)].bind(firstUnit + i);
+    program.set("uShadowMap" + std::to_string(i), firstUnit + i);
+  }
+}
+
+}  // namespace penumbra::passes

@@ -1,0 +1,45 @@
+// ShadowPass: renders one depth-only shadow map per area-light sample, from a point on the
+// light's true surface, with a frustum fitted to the scene bounds inside the light's emitting
+// hemisphere (at most 150 degrees wide; receivers outside it count as lit) and slope-scaled
+// depth bias. Up to kMaxShadowMaps maps are live at once (one lighting batch).
+#pragma once
+
+#include <array>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "scene/gpu_scene.h"
+
+namespace penumbra::passes {
+
+inline constexpr int kMaxShadowMaps = 4;
+
+struct ShadowView {
+  glm::mat4 matrix{1.0f};  // world -> shadow texture space [0, 1]^3
+  glm::vec4 params{0.0f};  // see chunks/shadows.glsl
+};
+
+// The light-space frustum for a sample at `origin` emitting along `direction`.
+ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
+                         const glm::vec3& upHint, const Bounds& sceneBounds, int mapSize);
+
+class ShadowPass {
+ public:
+  static Result<ShadowPass> create(gl::ShaderLibrary& library, int mapSize);
+  // Renders map `slot` for a light sample; returns its view for the lighting pass.
+  ShadowView render(int slot, const GpuScene& scene, const glm::vec3& origin,
+                    const glm::vec3& direction, const glm::vec3& upHint);
+  // Binds the maps to units firstUnit.. and sets uShadowMap0..3 on a program in use.
+  void bind(const gl::Program& program, int firstUnit) const;
+  int mapSize() const { return size_; }
+
+ private:
+  gl::Program* program_ = nullptr;
+  int size_ = 0;
+  std::array<gl::Texture2D, kMaxShadowMaps> maps_;
+  std::array<gl::Framebuffer, kMaxShadowMaps> framebuffers_;
+};
+
+}  // namespace penumbra::passes

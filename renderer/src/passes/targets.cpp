@@ -1,0 +1,53 @@
+#include "passes/targets.h"
+
+namespace penumbra::passes {
+namespace {
+
+Result<ColorTarget> makeColor(int w, int h, gl::PixelFormat format, const gl::Renderbuffer* depth) {
+  auto tex = gl::Texture2D::create({.width = w,
+                                    .height = h,
+                                    .format = format,
+                                    .sampler = {.minFilter = gl::Filter::Nearest,
+                                                .magFilter = gl::Filter::Nearest}});
+  if (!tex) return tex.error();
+  ColorTarget t{std::move(*tex), gl::Framebuffer::create()};
+  t.framebuffer.attachColor(0, t.color);
+  if (depth) t.framebuffer.attachDepth(*depth);
+  t.framebuffer.setDrawBuffers(1);
+  PN_TRY(t.framebuffer.checkComplete());
+  return t;
+}
+
+}  // namespace
+
+Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format,
+                                            gl::PixelFormat prepassFormat) {
+  RenderTargets t;
+  t.width = w;
+  t.height = h;
+  t.format = format;
+  auto fd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
+  if (!fd) return fd.error();
+  t.frameDepth = std::move(*fd);
+  auto pd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
+  if (!pd) return pd.error();
+  t.prepassDepth = std::move(*pd);
+  auto frame = makeColor(w, h, format, &t.frameDepth);
+  if (!frame) return makeError("frame target: " + frame.message());
+  t.frame = std::move(*frame);
+  for (auto& a : t.accumulation) {
+    auto acc = makeColor(w, h, format, nullptr);
+    if (!acc) return makeError("accumulation target: " + acc.message());
+    a = std::move(*acc);
+  }
+  auto pre = makeColor(w, h, prepassFormat, &t.prepassDepth);
+  if (!pre) return makeError("prepass target: " + pre.message());
+  t.prepass = std::move(*pre);
+  auto disp = makeColor(w, h, gl::PixelFormat::RGBA8, nullptr);
+  if (!disp) return makeError("display target: " + disp.message());
+  t.display = std::move(*disp);
+  gl::Framebuffer::bindDefault();
+  return t;
+}
+
+}  // namespace penumbra::passes

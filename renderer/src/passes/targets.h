@@ -1,0 +1,34 @@
+// RenderTargets: the framebuffers of the progressive pipeline at one resolution — the
+// intermediate frame (float colour + depth), the ping-pong accumulation pair, the depth and
+// normal prepass, and the 8-bit display image.
+#pragma once
+
+#include <array>
+
+#include "gl/objects.h"
+#include "gl/texture.h"
+
+namespace penumbra::passes {
+
+struct ColorTarget {
+  gl::Texture2D color;
+  gl::Framebuffer framebuffer;
+};
+
+struct RenderTargets {
+  int width = 0;
+  int height = 0;
+  gl::PixelFormat format = gl::PixelFormat::RGBA32F;
+  ColorTarget frame;      // this intermediate frame's radiance, with depth
+  gl::Renderbuffer frameDepth;
+  std::array<ColorTarget, 2> accumulation;
+  int current = 0;        // accumulation[current] holds the running mean
+  ColorTarget prepass;    // view normal + linear depth
+  gl::Renderbuffer prepassDepth;
+  ColorTarget display;    // RGBA8, display-encoded
+
+  static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
+                                      gl::PixelFormat prepassFormat);
+};
+
+}  // namespace penumbra::passes

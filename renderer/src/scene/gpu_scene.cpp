@@ -1,0 +1,209 @@
+#include "scene/gpu_scene.h"
+
+#include <algorithm>
+#include <string>
+
+namespace penumbra {
+namespace {
+
+constexpr int kPosition = 0, kNormal = 1, kTangent = 2, kUv0 = 3, kUv1 = 4, kColor = 5;
+
+template <class T>
+Status addAttribute(GpuPrimitive& p, int location, const std::vector<T>& data, int components) {
+  auto buf = gl::Buffer::create(gl::BufferKind::Vertex, std::span<const T>(data));
+  if (!buf) return buf.error();
+  p.vao.setAttribute(location, *buf, components, gl::AttribType::Float, false, 0, 0);
+  p.buffers.push_back(std::move(*buf));
+  return {};
+}
+
+gl::Filter minFilter(int f) {
+  switch (f) {
+    case 9728: return gl::Filter::Nearest;                  // NEAREST
+    case 9729: return gl::Filter::Linear;                   // LINEAR
+    case 9984: return gl::Filter::NearestMipNearest;        // NEAREST_MIPMAP_NEAREST
+    default: return gl::Filter::LinearMipLinear;            // the mipmapped ones
+  }
+}
+
+gl::Wrap wrap(int w) {
+  switch (w) {
+    case 33071: return gl::Wrap::ClampToEdge;
+    case 33648: return gl::Wrap::MirroredRepeat;
+    default: return gl::Wrap::Repeat;
+  }
+}
+
+}  // namespace
+
+Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
+  auto gs = std::make_unique<GpuScene>();
+  for (const Mesh& mesh : scene.meshes) {
+    std::vector<GpuPrimitive*> prims;
+    for (const Primitive& prim : mesh.primitives) {
+      auto p = std::make_unique<GpuPrimitive>();
+      p->vao = gl::VertexArray::create();
+      p->material = prim.material;
+      p->bounds = prim.bounds;
+      p->indexCount = static_cast<int>(prim.indices.size());
+      PN_TRY(addAttribute(*p, kPosition, prim.positions, 3));
+      if (!prim.normals.empty()) {
+        PN_TRY(addAttribute(*p, kNormal, prim.normals, 3));
+      } else {
+        p->vao.setConstant(kNormal, 0, 0, 1, 0);
+      }
+      if (!prim.tangents.empty()) {
+        PN_TRY(addAttribute(*p, kTangent, prim.tangents, 4));
+      } else {
+        p->vao.setConstant(kTangent, 0, 0, 0, 1);
+      }
+      if (!prim.uv0.empty()) {
+        PN_TRY(addAttribute(*p, kUv0, prim.uv0, 2));
+      } else {
+        p->vao.setConstant(kUv0, 0, 0, 0, 1);
+      }
+      if (!prim.uv1.empty()) {
+        PN_TRY(addAttribute(*p, kUv1, prim.uv1, 2));
+      } else if (!prim.uv0.empty()) {
+        PN_TRY(addAttribute(*p, kUv1, prim.uv0, 2));
+      } else {
+        p->vao.setConstant(kUv1, 0, 0, 0, 1);
+      }
+      if (!prim.colors.empty()) {
+        PN_TRY(addAttribute(*p, kColor, prim.colors, 4));
+      } else {
+        p->vao.setConstant(kColor, 1, 1, 1, 1);
+      }
+      auto ib = gl::Buffer::create(gl::BufferKind::Index, std::span<const uint32_t>(prim.indices));
+      if (!ib) return ib.error();
+      p->vao.setIndexBuffer(*ib, gl::IndexType::UInt32);
+      p->buffers.push_back(std::move(*ib));
+      prims.push_back(p.get());
+      gs->primitives_.push_back(std::move(p));
+    }
+    gs->meshes_.push_back(std::move(prims));
+  }
+
+  // Materials, then the glTF default material (white, metallic 1, roughness 1) last.
+  for (const Material& m : scene.materials) {
+    GpuMaterial gm;
+    gm.source = m;
+    const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                                 &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
+    for (int slot = 0; slot < 5; ++slot) {
+      if (!refs[slot]->valid()) continue;
+      const bool srgb = slot == 0 || slot == 4;  // base colour and emissive are sRGB
+      auto tex = gs->texture(scene, *refs[slot], srgb);
+      if (!tex) return tex.error();
+      gm.textures[slot] = *tex;
+    }
+    gs->materials_.push_back(std::move(gm));
+  }
+  gs->materials_.push_back(GpuMaterial{});
+  const int defaultMaterial = static_cast<int>(gs->materials_.size()) - 1;
+
+  for (const Instance& inst : scene.instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(gs->meshes_.size())) continue;
+    const glm::mat3 upper(inst.world);
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(upper));
+    for (GpuPrimitive* p : gs->meshes_[static_cast<size_t>(inst.mesh)]) {
+      DrawItem item;
+      item.primitive = p;
+      item.material = p->material >= 0 && p->material < defaultMaterial ? p->material
+                                                                        : defaultMaterial;
+      item.model = inst.world;
+      item.normalMatrix = normalMatrix;
+      item.mirrored = glm::determinant(upper) < 0.0f;
+      Bounds wb;
+      if (p->bounds.valid()) {
+        for (int c = 0; c < 8; ++c) {
+          glm::vec3 corner((c & 1) ? p->bounds.max.x : p->bounds.min.x,
+                           (c & 2) ? p->bounds.max.y : p->bounds.min.y,
+                           (c & 4) ? p->bounds.max.z : p->bounds.min.z);
+          wb.extend(glm::vec3(inst.world * glm::vec4(corner, 1.0f)));
+        }
+        gs->bounds_.extend(wb);
+        item.center = wb.center();
+      }
+      const bool blend = gs->materials_[static_cast<size_t>(item.material)].source.alphaMode ==
+                         AlphaMode::Blend;
+      (blend ? gs->blended_ : gs->opaque_).push_back(item);
+    }
+  }
+  return gs;
+}
+
+Result<const gl::Texture2D*> GpuScene::texture(const Scene& scene, const TextureRef& ref,
+                                               bool srgb) {
+  auto key = std::make_pair(ref.image * 64 + std::max(ref.sampler + 1, 0), srgb);
+  if (auto it = textures_.find(key); it != textures_.end()) return it->second.get();
+  if (ref.image < 0 || ref.image >= static_cast<int>(scene.images.size())) {
+    return makeError("texture refers to missing image " + std::to_string(ref.image));
+  }
+  const ImageData& img = scene.images[static_cast<size_t>(ref.image)];
+  SamplerDesc sd;
+  if (ref.sampler >= 0 && ref.sampler < static_cast<int>(scene.samplers.size())) {
+    sd = scene.samplers[static_cast<size_t>(ref.sampler)];
+  }
+  const gl::Filter minF = minFilter(sd.minFilter);
+  const bool mips = minF == gl::Filter::LinearMipLinear || minF == gl::Filter::NearestMipNearest;
+  gl::TextureDesc desc;
+  desc.width = std::max(img.width, 1);
+  desc.height = std::max(img.height, 1);
+  desc.format = srgb ? gl::PixelFormat::SRGB8_ALPHA8 : gl::PixelFormat::RGBA8;
+  desc.levels = mips ? gl::fullMipCount(desc.width, desc.height) : 1;
+  desc.sampler = {.minFilter = minF,
+                  .magFilter = sd.magFilter == 9728 ? gl::Filter::Nearest : gl::Filter::Linear,
+                  .wrapS = wrap(sd.wrapS),
+                  .wrapT = wrap(sd.wrapT)};
+  auto tex = gl::Texture2D::create(desc);
+  if (!tex) return makeError("image '" + img.name + "': " + tex.message());
+  const uint8_t white[4] = {255, 255, 255, 255};
+  const bool usable = img.pixels.size() >= static_cast<size_t>(desc.width) * desc.height * 4;
+  tex->upload(0, usable ? img.pixels.data() : white, gl::DataType::UInt8);
+  if (mips) tex->generateMipmaps();
+  auto owned = std::make_unique<gl::Texture2D>(std::move(*tex));
+  const gl::Texture2D* raw = owned.get();
+  textures_.emplace(key, std::move(owned));
+  return raw;
+}
+
+void GpuScene::bindMaterial(const gl::Program& program, int index) const {
+  const GpuMaterial& gm = materials_[static_cast<size_t>(index)];
+  const Material& m = gm.source;
+  program.set("uBaseColorFactor", m.baseColorFactor);
+  program.set("uMetallicFactor", m.metallicFactor);
+  program.set("uRoughnessFactor", m.roughnessFactor);
+  program.set("uEmissive", m.emissiveFactor * m.emissiveStrength);
+  program.set("uNormalScale", m.normalScale);
+  program.set("uOcclusionStrength", m.occlusionStrength);
+  program.set("uAlphaMode", static_cast<int>(m.alphaMode));
+  program.set("uAlphaCutoff", m.alphaCutoff);
+  const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                               &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
+  static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex",
+                                           "uNormalTex", "uOcclusionTex", "uEmissiveTex"};
+  int textureMask = 0, texCoordMask = 0;
+  glm::mat3 transforms[5];
+  for (int slot = 0; slot < 5; ++slot) {
+    transforms[slot] = refs[slot]->transform;
+    program.set(kSamplers[slot], slot);
+    if (gm.textures[slot]) {
+      textureMask |= 1 << slot;
+      if (refs[slot]->texCoord == 1) texCoordMask |= 1 << slot;
+      gm.textures[slot]->bind(slot);
+    }
+  }
+  program.set("uTextureMask", textureMask);
+  program.set("uTexCoordMask", texCoordMask);
+  for (int slot = 0; slot < 5; ++slot) {
+    program.set("uUvTransform[" + std::to_string(slot) + "]", transforms[slot]);
+  }
+}
+
+void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
+  program.set("uModel", item.model);
+  program.set("uNormalMatrix", item.normalMatrix);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,69 @@
+// GpuScene: a Scene uploaded to GL — one vertex array per primitive, textures created per
+// (image, colour space) on first use, and a flat draw list of instances with their materials.
+// Built once per scene; passes only read it.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "penumbra/scene.h"
+
+namespace penumbra {
+
+struct GpuPrimitive {
+  gl::VertexArray vao;
+  std::vector<gl::Buffer> buffers;
+  int indexCount = 0;
+  int material = -1;
+  Bounds bounds;
+};
+
+struct GpuMaterial {
+  Material source;
+  // Texture per slot (base colour, metallic-roughness, normal, occlusion, emissive); null = none.
+  const gl::Texture2D* textures[5] = {nullptr, nullptr, nullptr, nullptr, nullptr};
+};
+
+struct DrawItem {
+  const GpuPrimitive* primitive = nullptr;
+  int material = 0;  // index into GpuScene::materials (the default material is last)
+  glm::mat4 model{1.0f};
+  glm::mat3 normalMatrix{1.0f};
+  bool mirrored = false;  // negative determinant: front faces wind clockwise
+  glm::vec3 center{0.0f};
+};
+
+class GpuScene {
+ public:
+  static Result<std::unique_ptr<GpuScene>> create(const Scene& scene);
+
+  const std::vector<DrawItem>& opaque() const { return opaque_; }
+  const std::vector<DrawItem>& blended() const { return blended_; }
+  const GpuMaterial& material(int i) const { return materials_[static_cast<size_t>(i)]; }
+  const Bounds& bounds() const { return bounds_; }
+  size_t textureCount() const { return textures_.size(); }
+
+  // Sets the material uniforms and binds its textures to units 0..4 on a program in use.
+  void bindMaterial(const gl::Program& program, int material) const;
+  // Sets uModel and uNormalMatrix of a draw item.
+  static void bindTransform(const gl::Program& program, const DrawItem& item);
+
+ private:
+  Result<const gl::Texture2D*> texture(const Scene& scene, const TextureRef& ref, bool srgb);
+
+  std::vector<std::unique_ptr<GpuPrimitive>> primitives_;  // per mesh, per primitive
+  std::vector<std::vector<GpuPrimitive*>> meshes_;
+  std::map<std::pair<int, bool>, std::unique_ptr<gl::Texture2D>> textures_;
+  std::vector<GpuMaterial> materials_;
+  std::vector<DrawItem> opaque_;
+  std::vector<DrawItem> blended_;
+  Bounds bounds_;
+};
+
+}  // namespace penumbra

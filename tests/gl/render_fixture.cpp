@@ -1,0 +1,94 @@
+#include "render_fixture.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace penumbra::test {
+
+Mesh quadMesh(float size, float y, int material) {
+  Mesh m;
+  Primitive p;
+  const float h = size * 0.5f;
+  p.positions = {{-h, y, -h}, {-h, y, h}, {h, y, h}, {h, y, -h}};
+  p.normals.assign(4, glm::vec3(0, 1, 0));
+  p.indices = {0, 1, 2, 0, 2, 3};
+  p.material = material;
+  for (auto& v : p.positions) p.bounds.extend(v);
+  m.primitives.push_back(std::move(p));
+  return m;
+}
+
+Mesh boxMesh(glm::vec3 lo, glm::vec3 hi, int material) {
+  Mesh m;
+  Primitive p;
+  auto face = [&](glm::vec3 n, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+    uint32_t base = static_cast<uint32_t>(p.positions.size());
+    for (auto v : {a, b, c, d}) {
+      p.positions.push_back(v);
+      p.normals.push_back(n);
+      p.bounds.extend(v);
+    }
+    // Wind counter-clockwise as seen from outside (along -n).
+    glm::vec3 cr = glm::cross(b - a, c - a);
+    if (glm::dot(cr, n) > 0) {
+      p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    } else {
+      p.indices.insert(p.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+    }
+  };
+  face({0, 1, 0}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
+  face({0, -1, 0}, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});
+  face({1, 0, 0}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});
+  face({-1, 0, 0}, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {lo.x, lo.y, hi.z});
+  face({0, 0, 1}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
+  face({0, 0, -1}, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z});
+  p.material = material;
+  m.primitives.push_back(std::move(p));
+  return m;
+}
+
+Material lambert(glm::vec3 albedo) {
+  Material m;
+  m.baseColorFactor = glm::vec4(albedo, 1.0f);
+  m.metallicFactor = 0.0f;
+  m.roughnessFactor = 1.0f;
+  return m;
+}
+
+Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDeg) {
+  Camera c;
+  glm::vec3 up = std::abs(glm::normalize(target - eye).y) > 0.99f ? glm::vec3(0, 0, -1)
+                                                                   : glm::vec3(0, 1, 0);
+  c.world = glm::inverse(glm::lookAt(eye, target, up));
+  c.yfov = glm::radians(yfovDeg);
+  c.znear = 0.01f;
+  return c;
+}
+
+void finishScene(Scene& scene) {
+  scene.instances.clear();
+  scene.bounds = {};
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    Instance inst;
+    inst.mesh = static_cast<int>(i);
+    scene.instances.push_back(inst);
+    for (auto& p : scene.meshes[i].primitives) scene.bounds.extend(p.bounds);
+  }
+}
+
+Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env,
+                             const Camera& camera, RenderSettings settings,
+                             const RendererOptions& options) {
+  auto r = Renderer::create(options);
+  if (!r) return r.error();
+  PN_TRY((*r)->setSettings(settings));
+  PN_TRY((*r)->setScene(scene));
+  PN_TRY((*r)->setEnvironment(env));
+  (*r)->setCamera(camera);
+  while (!(*r)->converged()) {
+    auto f = (*r)->step();
+    if (!f) return f.error();
+  }
+  return (*r)->readRadiance();
+}
+
+}  // namespace penumbra::test

@@ -1,0 +1,27 @@
+// Helpers for renderer GL tests: small scenes built in code and a one-call render.
+#pragma once
+
+#include <memory>
+
+#include "gl_fixture.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+
+namespace penumbra::test {
+
+// A square of side `size` in the XZ plane at height y, facing +Y, with one material.
+Mesh quadMesh(float size, float y, int material);
+// A box [min, max] with outward normals (5 faces, no bottom when `open` is set).
+Mesh boxMesh(glm::vec3 min, glm::vec3 max, int material);
+// A Lambertian material of the given albedo (metallic 0, roughness 1).
+Material lambert(glm::vec3 albedo);
+// A camera at `eye` looking at `target` with vertical field of view `yfovDeg`.
+Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDeg);
+// Fills bounds and instances (identity transforms) of a scene built from meshes.
+void finishScene(Scene& scene);
+
+// Renders `frames` frames and returns the linear radiance.
+Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, const Camera& camera,
+                             RenderSettings settings, const RendererOptions& options = {});
+
+}  // namespace penumbra::test

@@ -1,0 +1,27 @@
+#include "progress.h"
+
+#include <cstdio>
+
+namespace penumbra::tools {
+
+ProgressBar::ProgressBar(std::string label, int total, bool enabled)
+    : label_(std::move(label)), total_(total), enabled_(enabled),
+      start_(std::chrono::steady_clock::now()) {}
+
+void ProgressBar::update(int done) {
+  if (!enabled_ || total_ <= 0) return;
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double left = done > 0 ? elapsed / done * (total_ - done) : 0.0;
+  const int width = 30;
+  const int filled = width * done / total_;
+  std::fprintf(stderr, "\r%s [%.*s%*s] frame %d of %d, %.1f s left   ", label_.c_str(), filled,
+               "##############################", width - filled, "", done, total_, left);
+  std::fflush(stderr);
+}
+
+void ProgressBar::finish() {
+  if (enabled_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace penumbra::tools
