@@ -41,6 +41,10 @@ void main() {
   float alpha = s.perceptualRoughness * s.perceptualRoughness;
   vec3 dfgTerms = dfg(NoV, s.perceptualRoughness);
   vec3 specularScale = (f0 * dfgTerms.x + dfgTerms.y) * (1.0 + f0 * (1.0 / dfgTerms.z - 1.0));
+  // glTF's fresnel_mix: the diffuse base only receives what the specular layer does not
+  // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
+  // white furnace reflects exactly the environment.
+  diffuseColor *= vec3(1.0) - specularScale;
 
   vec3 color = vec3(0.0);
 

@@ -1,5 +1,7 @@
 #include "render_fixture.h"
 
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace penumbra::test {
@@ -89,6 +91,50 @@ Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env,
     if (!f) return f.error();
   }
   return (*r)->readRadiance();
+}
+
+}  // namespace penumbra::test
+
+namespace penumbra::test {
+
+Mesh sphereMesh(glm::vec3 c, float r, int material, int segments) {
+  Mesh m;
+  Primitive p;
+  const int rings = segments / 2;
+  for (int j = 0; j <= rings; ++j) {
+    const float theta = static_cast<float>(M_PI) * j / rings;
+    for (int i = 0; i <= segments; ++i) {
+      const float phi = 2.0f * static_cast<float>(M_PI) * i / segments;
+      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      p.positions.push_back(c + r * n);
+      p.normals.push_back(n);
+      p.bounds.extend(c + r * n);
+    }
+  }
+  for (int j = 0; j < rings; ++j) {
+    for (int i = 0; i < segments; ++i) {
+      uint32_t a = j * (segments + 1) + i, b = a + segments + 1;
+      p.indices.insert(p.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  }
+  p.material = material;
+  m.primitives.push_back(std::move(p));
+  return m;
+}
+
+double rmse(const Image& a, const Image& b) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const double d = a.pixel(x, y)[c] - b.pixel(x, y)[c];
+        sum += d * d;
+        ++n;
+      }
+    }
+  }
+  return std::sqrt(sum / static_cast<double>(std::max<size_t>(n, 1)));
 }
 
 }  // namespace penumbra::test

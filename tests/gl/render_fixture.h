@@ -25,3 +25,10 @@ Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, c
                              RenderSettings settings, const RendererOptions& options = {});
 
 }  // namespace penumbra::test
+
+namespace penumbra::test {
+// A UV sphere of radius r centred at c.
+Mesh sphereMesh(glm::vec3 c, float r, int material, int segments = 48);
+// RMSE over RGB of two images of equal size.
+double rmse(const Image& a, const Image& b);
+}  // namespace penumbra::test

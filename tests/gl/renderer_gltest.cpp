@@ -1,0 +1,209 @@
+// The progressive renderer end to end: white furnace, goldens, the sample schedule as seen
+// in the passes it issues, convergence, determinism and the half-float path.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "penumbra/environment.h"
+#include "penumbra/scene_file.h"
+#include "render_fixture.h"
+#include "test_support.h"
+
+namespace penumbra::test {
+namespace {
+
+class RendererGLTest : public GlFixture {};
+
+struct Loaded {
+  Scene scene;
+  PackedEnvironment env;
+  Camera camera;
+  RenderSettings settings;
+};
+
+Loaded loadCornell(int size, int frames) {
+  auto sf = loadSceneFile(sourceDir() + "/assets/cornell_box/cornell_box.json");
+  EXPECT_TRUE(sf.ok()) << (sf.ok() ? "" : sf.message());
+  auto scene = loadGltf(sf->gltfPath);
+  EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.message());
+  Loaded l;
+  l.scene = std::move(*scene);
+  l.env = uniformEnvironment(sf->uniformEnvironment);
+  l.settings = sf->settings;
+  l.camera = l.scene.cameras.at(0);
+  l.settings.width = l.settings.height = size;
+  l.settings.progressive.frames = frames;
+  l.settings.progressive.shadowMapSize = 256;
+  return l;
+}
+
+std::unique_ptr<Renderer> makeRenderer(const Loaded& l, const RendererOptions& o = {}) {
+  auto r = Renderer::create(o);
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.message());
+  EXPECT_TRUE((*r)->setSettings(l.settings).ok());
+  EXPECT_TRUE((*r)->setScene(l.scene).ok());
+  EXPECT_TRUE((*r)->setEnvironment(l.env).ok());
+  (*r)->setCamera(l.camera);
+  return std::move(*r);
+}
+
+void runToEnd(Renderer& r) {
+  while (!r.converged()) ASSERT_TRUE(r.step().ok());
+}
+
+TEST_F(RendererGLTest, WhiteFurnaceLambertianSphereShowsTheEnvironment) {
+  Scene s;
+  s.materials.push_back(lambert(glm::vec3(1.0f)));
+  s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
+  finishScene(s);
+  for (int frames : {1, 8}) {
+    RenderSettings rs;
+    rs.width = rs.height = 48;
+    rs.progressive.frames = frames;
+    auto img = renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)),
+                              lookAtCamera({0, 0, 4}, {0, 0, 0}, 20.0f), rs);
+    ASSERT_TRUE(img.ok()) << img.message();
+    int checked = 0;
+    for (int y = 10; y < 38; ++y) {
+      for (int x = 10; x < 38; ++x) {
+        const float* p = img->pixel(x, y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], 1.0f, 0.01f) << x << "," << y;
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 700);
+  }
+}
+
+TEST_F(RendererGLTest, CornellBoxConvergedMatchesGolden) {
+  Loaded l = loadCornell(96, 128);
+  auto r = makeRenderer(l);
+  runToEnd(*r);
+  auto img = r->readDisplay();
+  ASSERT_TRUE(img.ok());
+  EXPECT_TRUE(matchesGolden(*img, sourceDir() + "/tests/golden/cornell_box_m128.png",
+                            {.maxAbs = 0.08, .meanAbs = 0.004}, "cornell_box_m128"));
+}
+
+TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
+  auto sf = loadSceneFile(sourceDir() + "/assets/material_grid/material_grid.json");
+  ASSERT_TRUE(sf.ok()) << sf.message();
+  auto scene = loadGltf(sf->gltfPath);
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  auto env = loadEnvironment(sf->environmentPath, {.faceSize = 32, .samples = 32});
+  ASSERT_TRUE(env.ok()) << env.message();
+  Loaded l;
+  l.scene = std::move(*scene);
+  l.env = std::move(*env);
+  l.settings = sf->settings;
+  l.camera = l.scene.cameras.at(0);
+  l.settings.width = 128;
+  l.settings.height = 96;
+  l.settings.progressive.frames = 16;
+  auto r = makeRenderer(l);
+  runToEnd(*r);
+  auto img = r->readDisplay();
+  ASSERT_TRUE(img.ok());
+  EXPECT_TRUE(matchesGolden(*img, sourceDir() + "/tests/golden/material_grid_m16.png",
+                            {.maxAbs = 0.08, .meanAbs = 0.004}, "material_grid_m16"));
+}
+
+TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
+  Loaded l = loadCornell(32, 32);
+  auto r = makeRenderer(l);
+  ASSERT_EQ(*r->step(), 1);
+  EXPECT_EQ(r->lastFrame().shadowPasses, 0);
+  EXPECT_FALSE(r->lastFrame().prepass);
+  EXPECT_FALSE(r->lastFrame().occlusion);
+  ASSERT_EQ(*r->step(), 2);
+  EXPECT_TRUE(r->lastFrame().prepass);
+  EXPECT_TRUE(r->lastFrame().occlusion);
+  int total = 0, minPerFrame = 1 << 20, maxPerFrame = 0;
+  while (!r->converged()) {
+    ASSERT_TRUE(r->step().ok());
+    const int frame = r->lastFrame().frame;
+    const int n = r->lastFrame().shadowPasses;
+    total += n;
+    EXPECT_FALSE(r->lastFrame().prepass) << "the prepass is rendered once per camera";
+    if (frame >= static_cast<int>(32 * 0.3f)) {
+      minPerFrame = std::min(minPerFrame, n);
+      maxPerFrame = std::max(maxPerFrame, n);
+    } else {
+      EXPECT_EQ(n, 0) << "no direct light before frame floor(m f_d), frame " << frame;
+    }
+  }
+  EXPECT_GT(total, 0);
+  EXPECT_LE(maxPerFrame - minPerFrame, 1);
+  // Restarting (a camera change) begins again at frame 1 with no shadow pass.
+  r->setCamera(l.camera);
+  ASSERT_EQ(*r->step(), 1);
+  EXPECT_EQ(r->lastFrame().shadowPasses, 0);
+}
+
+TEST_F(RendererGLTest, ErrorAgainstLongRunFallsWithFrames) {
+  Loaded l = loadCornell(40, 1024);
+  auto r = makeRenderer(l);
+  std::vector<std::pair<int, Image>> snapshots;
+  // Same schedule shape for every m: compare frame k of a 128-frame run with 1024 frames.
+  l.settings.progressive.frames = 128;
+  auto r128 = makeRenderer(l);
+  int next = 1;
+  while (!r128->converged()) {
+    auto f = r128->step();
+    ASSERT_TRUE(f.ok());
+    if (*f == next) {
+      snapshots.emplace_back(*f, *r128->readRadiance());
+      next *= 2;
+    }
+  }
+  runToEnd(*r);
+  auto reference = r->readRadiance();
+  ASSERT_TRUE(reference.ok());
+  std::vector<double> errors;
+  for (auto& [frame, img] : snapshots) errors.push_back(rmse(img, *reference));
+  ASSERT_EQ(errors.size(), 8u);
+  for (size_t i = 1; i < errors.size(); ++i) {
+    EXPECT_LE(errors[i], errors[i - 1] * 1.15) << "frame " << snapshots[i].first;
+  }
+  EXPECT_LT(errors.back(), 0.35 * errors.front());
+}
+
+TEST_F(RendererGLTest, SameInputsAndSeedGiveBitIdenticalImages) {
+  Loaded l = loadCornell(32, 24);
+  auto a = makeRenderer(l);
+  auto b = makeRenderer(l);
+  runToEnd(*a);
+  runToEnd(*b);
+  auto ia = a->readRadiance(), ib = b->readRadiance();
+  ASSERT_TRUE(ia.ok() && ib.ok());
+  EXPECT_EQ(ia->pixels, ib->pixels);
+  l.settings.progressive.seed = 99;
+  auto c = makeRenderer(l);
+  runToEnd(*c);
+  EXPECT_NE(c->readRadiance()->pixels, ia->pixels) << "the seed must change the samples";
+}
+
+TEST_F(RendererGLTest, HalfFloatAccumulationConvergesToTheFloatResult) {
+  Loaded l = loadCornell(32, 64);
+  auto full = makeRenderer(l);
+  auto half = makeRenderer(l, {.forceHalfFloat = true});
+  runToEnd(*full);
+  runToEnd(*half);
+  auto a = full->readRadiance(), b = half->readRadiance();
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_LT(rmse(*a, *b), 0.01);
+}
+
+TEST_F(RendererGLTest, NonFiniteSamplesDoNotPoisonTheImage) {
+  Loaded l = loadCornell(24, 16);
+  l.scene.lights.at(0).intensity = std::nanf("");
+  auto r = makeRenderer(l);
+  runToEnd(*r);
+  auto img = r->readRadiance();
+  ASSERT_TRUE(img.ok());
+  for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace penumbra::test
