@@ -1,13 +1,21 @@
 // Forward shading of one intermediate frame: split-sum environment light (with this frame's
 // occlusion sample once the prepass exists), this frame's area-light samples (each weighted by
 // the sample distributor and shadowed by its own shadow map), punctual lights and emission.
+// Generated defines pick the variant, so frame 1 (environment only) runs a plain forward pass:
+//   PN_OCCLUSION  progressive occlusion and screen-space indirect light
+//   PN_AREA       area-light samples with shadow maps
+//   PN_PUNCTUAL   KHR_lights_punctual lights
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
+#if PN_AREA
 #include "chunks/area_lights.glsl"
+#include "chunks/shadows.glsl"
+#endif
+#if PN_OCCLUSION
 #include "chunks/sampling.glsl"
 #include "chunks/occlusion.glsl"
-#include "chunks/shadows.glsl"
+#endif
 
 const int MAX_AREA = 8;
 const int MAX_PUNCTUAL = 8;
@@ -53,7 +61,8 @@ void main() {
     vec3 irradiance = envIrradiance(n);
     vec3 r = reflect(-v, n);
     vec3 prefiltered = envRadiance(r, s.perceptualRoughness);
-    if (uOcclusionEnabled) {
+#if PN_OCCLUSION
+    {
       mat3 frame = tangentFrame(n);
       vec2 pixel = gl_FragCoord.xy;
       vec3 hit;
@@ -71,10 +80,12 @@ void main() {
         prefiltered = hit;
       }
     }
+#endif
     color += uEnvWeight * s.occlusion *
              (diffuseColor * irradiance * INV_PI + prefiltered * specularScale);
   }
 
+#if PN_AREA
   // Area-light samples.
   for (int i = 0; i < MAX_AREA; ++i) {
     if (i >= uAreaCount) break;
@@ -93,6 +104,8 @@ void main() {
     color += uAreaRadiance[i] * visibility * (diffuseColor * irradiance * INV_PI + specular);
   }
 
+#endif
+#if PN_PUNCTUAL
   // Punctual lights (KHR_lights_punctual), unshadowed.
   for (int i = 0; i < MAX_PUNCTUAL; ++i) {
     if (i >= uPunctualCount) break;
@@ -123,6 +136,7 @@ void main() {
     color += e * (diffuseColor * INV_PI + specularBrdf(n, v, l, f0, alpha, 1.0));
   }
 
+#endif
   color += s.emissive * uEnvWeight;
   // Alpha marks what screen-space indirect light may reuse: emitters are excluded (their light
   // is already counted by the analytic area lights), and extra light batches add nothing.

@@ -2,7 +2,6 @@
 // BRDF-sampled direction per pixel against the depth prepass. A hit drops that direction's
 // environment light; with screen-space indirect on, it adds the radiance already accumulated
 // at the hit instead (one bounce, as the paper's public demo does).
-uniform bool uOcclusionEnabled;
 uniform bool uIndirectEnabled;
 uniform sampler2D uPrepass;      // xyz view-space normal, w linear depth (0 = background)
 uniform sampler2D uAccumulated;  // running mean so far (linear radiance)

@@ -87,15 +87,15 @@ int main(int argc, char** argv) {
   app.add_option("--env", envPath, "environment: packed .hdr from penumbra-prefilter or a panorama");
   auto* expOpt = app.add_option("--exposure", exposure, "exposure in EV");
   app.add_option("--tonemap", toneMapper, "pbr-neutral (default), aces, reinhard or none");
-  app.add_option("--env-intensity", envIntensity, "environment intensity multiplier");
+  auto* intensityOpt = app.add_option("--env-intensity", envIntensity, "environment intensity multiplier");
   auto* rotOpt = app.add_option("--env-rotation", envRotation, "environment rotation about +Y, degrees");
   app.add_flag("--no-background", noBackground, "black background instead of the environment");
   app.add_option("--gl", glName, "GL backend: auto, egl, egl-device or osmesa");
-  app.add_option("--frames", frames, "intermediate frames m (1..4096, default 128)");
+  auto* framesOpt = app.add_option("--frames", frames, "intermediate frames m (1..4096, default 128)");
   auto* fdOpt = app.add_option("--fd", fd, "fraction of frames before direct light starts (0.3)");
   auto* occOpt = app.add_option("--occlusion-distance", occDistance, "occlusion distance d_occ (m)");
-  app.add_option("--light-samples", lightSamples, "shadow-map samples per area light (0 = auto)");
-  app.add_option("--shadow-size", shadowSize, "shadow-map size (power of two)");
+  auto* samplesOpt = app.add_option("--light-samples", lightSamples, "shadow-map samples per area light (0 = auto)");
+  auto* shadowOpt = app.add_option("--shadow-size", shadowSize, "shadow-map size (power of two)");
   app.add_flag("--no-ssgi", noSsgi, "turn off one-bounce screen-space indirect light");
   auto* seedOpt = app.add_option("--seed", seed, "seed of the sample sequences");
   app.add_option("--save-every", saveEvery, "also write OUT_fNNNN.png every K frames");
@@ -124,14 +124,14 @@ int main(int argc, char** argv) {
     if (!t) return fail(t.message());
     s.toneMapper = *t;
   }
-  if (envIntensity >= 0) s.environmentIntensity = envIntensity;
+  if (*intensityOpt) s.environmentIntensity = envIntensity;
   if (*rotOpt) s.environmentRotation = envRotation;
   if (noBackground) s.showBackground = false;
-  if (frames != 0) s.progressive.frames = frames;
+  if (*framesOpt) s.progressive.frames = frames;
   if (*fdOpt) s.progressive.directDelay = fd;
   if (*occOpt) s.progressive.occlusionDistance = occDistance;
-  if (lightSamples >= 0) s.progressive.lightSamples = lightSamples;
-  if (shadowSize != 0) s.progressive.shadowMapSize = shadowSize;
+  if (*samplesOpt) s.progressive.lightSamples = lightSamples;
+  if (*shadowOpt) s.progressive.shadowMapSize = shadowSize;
   if (noSsgi) s.progressive.screenSpaceIndirect = false;
   if (*seedOpt) s.progressive.seed = seed;
   if (!envPath.empty()) sf.environmentPath = envPath;

@@ -62,9 +62,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
-    auto lit = library.program("mesh.vert", "lighting.frag");
-    if (!lit) return lit.error();
-    lighting = *lit;
+    // Compile every lighting variant up front: no frame pays for a shader compile.
+    for (int v = 0; v < 8; ++v) {
+      auto lit = lightingProgram(v & 1, v & 2, v & 4);
+      if (!lit) return lit.error();
+    }
     auto pre = library.program("mesh.vert", "prepass.frag");
     if (!pre) return pre.error();
     prepassProgram = *pre;
@@ -131,6 +133,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
     controller.setLights(infos);
   }
 
+  Result<gl::Program*> lightingProgram(bool occlusion, bool area, bool punctual) {
+    return library.program("mesh.vert", "lighting.frag",
+                           {{"PN_OCCLUSION", occlusion ? "1" : "0"},
+                            {"PN_AREA", area ? "1" : "0"},
+                            {"PN_PUNCTUAL", punctual ? "1" : "0"}});
+  }
+
   Camera activeCamera() const { return hasCamera ? camera : defaultCameraForBounds(); }
   Camera defaultCameraForBounds() const {
     Scene empty;
@@ -171,14 +180,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   void setLightingUniforms(const CameraMatrices& cm, const glm::mat4& jitteredViewProj,
-                           const FramePlan& plan) {
+                           const FramePlan& plan, bool occlusion) {
     const gl::Program& p = *lighting;
     p.use();
     p.set("uViewProj", jitteredViewProj);
     p.set("uCameraPos", cm.position);
     environment->bind(p, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
-    const bool occlusion = plan.occlusion && prepassValid;
-    p.set("uOcclusionEnabled", occlusion ? 1 : 0);
     p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect && plan.frame > 2 ? 1 : 0);
     (occlusion ? targets->prepass.color : dummy2d).bind(kUnitPrepass);
     targets->accumulation[static_cast<size_t>(targets->current)].color.bind(kUnitAccumulated);
@@ -244,8 +251,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           views.push_back({});
         }
       }
-      drawLighting(plan, cm, plain, viewProj, b == 0, batch, views,
-                   b == 0 ? punctual : std::vector<const LightSample*>{});
+      PN_TRY(drawLighting(plan, cm, plain, viewProj, b == 0, batch, views,
+                          b == 0 ? punctual : std::vector<const LightSample*>{}));
       ++stats.lightingPasses;
     }
 
@@ -260,11 +267,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
     acc.set("uCurrent", 1);
     acc.set("uWeight", 1.0f / static_cast<float>(plan.frame));
     accumulate->draw();
+    // WebGL refuses any draw whose program has a sampler on a unit holding a texture of the
+    // bound framebuffer (a "feedback loop"), even if the shader never reads it. The material
+    // samplers of the next lighting pass sit on units 0-4 whether or not the material has a
+    // texture there, and unit 1 now holds the frame target they draw into: park a dummy there.
+    dummy2d.bind(1);
     targets->current = next;
     return gl::checkError("frame " + std::to_string(plan.frame));
   }
 
-  void drawLighting(const FramePlan& plan, const CameraMatrices& cm, const CameraMatrices& plain,
+  Status drawLighting(const FramePlan& plan, const CameraMatrices& cm, const CameraMatrices& plain,
                     const glm::mat4& viewProj, bool first,
                     const std::vector<const LightSample*>& batch,
                     const std::vector<passes::ShadowView>& views,
@@ -285,8 +297,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
         background->draw();
       }
     }
-    if (!scene) return;
-    setLightingUniforms(cm, viewProj, plan);
+    if (!scene) return Status{};
+    // Occlusion only in the first batch: extra batches add direct light alone.
+    const bool occlusion = first && plan.occlusion && prepassValid;
+    auto program = lightingProgram(occlusion, !batch.empty(), !punctual.empty());
+    if (!program) return program.error();
+    lighting = *program;
+    setLightingUniforms(cm, viewProj, plan, occlusion);
     const gl::Program& p = *lighting;
     p.set("uEnvWeight", first ? 1.0f : 0.0f);
     // Area-light samples of this batch.
@@ -361,6 +378,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       drawList(p, sorted, true,
                {.depthWrite = false, .blend = gl::Blend::Alpha});
     }
+    return {};
   }
 };
 
@@ -434,6 +452,23 @@ Result<Image> Renderer::readDisplay() {
   std::vector<float> f(bytes.size());
   for (size_t i = 0; i < bytes.size(); ++i) f[i] = bytes[i] / 255.0f;
   return flipRows(std::move(f), t.width, t.height, 4);
+}
+
+Status Renderer::present(int canvasWidth, int canvasHeight) {
+  if (canvasWidth <= 0 || canvasHeight <= 0) {
+    return makeError("present: canvas size " + std::to_string(canvasWidth) + "x" +
+                     std::to_string(canvasHeight) + " is empty");
+  }
+  auto& t = *impl_->targets;
+  gl::Framebuffer::bindDefault();
+  gl::setViewport(0, 0, canvasWidth, canvasHeight);
+  const gl::Program& p = impl_->tonemap->begin();
+  t.accumulation[static_cast<size_t>(t.current)].color.bind(0);
+  p.set("uRadiance", 0);
+  p.set("uExposureScale", std::exp2(impl_->settings.exposure));
+  p.set("uToneMapper", static_cast<int>(impl_->settings.toneMapper));
+  impl_->tonemap->draw();
+  return gl::checkError("presenting to the canvas");
 }
 
 }  // namespace penumbra

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# penumbra-render on the command line: bad input exits non-zero with a one-line message and
+# writes nothing; normal runs write PNG and EXR, intermediate frames and a contact sheet; an
+# existing output is never clobbered by a failed run.
+# Usage: render_cli.sh <dir of libpenumbra.a> <build dir>
+set -uo pipefail
+
+TOOL="$2/tools/render/penumbra-render"
+ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
+CORNELL="$ROOT/assets/cornell_box/cornell_box.json"
+[ -x "$TOOL" ] || { echo "FAIL: $TOOL not built"; exit 1; }
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_fail NAME FRAGMENT ARGS...: non-zero exit, one line on stderr containing FRAGMENT.
+expect_fail() {
+  local name="$1" fragment="$2"
+  shift 2
+  local err
+  if err=$("$TOOL" "$@" 2>&1 >/dev/null); then
+    fail "$name: exited 0"
+    return
+  fi
+  if ! grep -qF -- "$fragment" <<<"$err"; then fail "$name: message '$err' lacks '$fragment'"; fi
+  local lines
+  lines=$(grep -c . <<<"$err")
+  if [ "$lines" != 1 ]; then fail "$name: $lines lines of error output: $err"; fi
+  echo "ok: $name -> $err"
+}
+
+printf '{"gltf": "nope.gltf"' >"$WORK/truncated.json"
+printf 'glTF\x02\x00\x00\x00\x10\x00\x00\x00' >"$WORK/short.glb"
+printf 'NOPE\x02\x00\x00\x00\x10\x00\x00\x00xxxx' >"$WORK/magic.glb"
+echo '{"gltf": "missing.gltf"}' >"$WORK/missing-model.json"
+
+expect_fail "missing scene file" "no such file" "$WORK/none.gltf" -o "$WORK/a.png"
+expect_fail "truncated scene JSON" "not valid JSON" "$WORK/truncated.json" -o "$WORK/a.png"
+expect_fail "model named by the scene file is missing" "missing.gltf" "$WORK/missing-model.json" -o "$WORK/a.png"
+expect_fail "truncated glb" "short.glb" "$WORK/short.glb" -o "$WORK/a.png"
+expect_fail "wrong glb magic" "magic.glb" "$WORK/magic.glb" -o "$WORK/a.png"
+expect_fail "bad size" "--size" "$CORNELL" -o "$WORK/a.png" --size 12by4
+expect_fail "absurd size" "resolution" "$CORNELL" -o "$WORK/a.png" --size 100000x10
+expect_fail "zero frames" "frames" "$CORNELL" -o "$WORK/a.png" --frames 0
+expect_fail "too many frames" "frames" "$CORNELL" -o "$WORK/a.png" --frames 5000
+expect_fail "bad tone mapper" "tone mapper" "$CORNELL" -o "$WORK/a.png" --tonemap filmic
+expect_fail "bad GL backend" "GL backend" "$CORNELL" -o "$WORK/a.png" --gl vulkan
+expect_fail "unknown camera" "camera" "$CORNELL" -o "$WORK/a.png" --camera nosuchcam
+expect_fail "missing environment" "nope.hdr" "$CORNELL" -o "$WORK/a.png" --env "$WORK/nope.hdr"
+expect_fail "output folder missing" "does not exist" "$CORNELL" -o "$WORK/no/dir/a.png"
+expect_fail "output format" ".png, .exr" "$CORNELL" -o "$WORK/a.jpg"
+expect_fail "bad shadow size" "shadow-map size" "$CORNELL" -o "$WORK/a.png" --shadow-size 1000
+[ -e "$WORK/a.png" ] && fail "a failed run wrote an output"
+
+# Normal runs.
+if "$TOOL" "$CORNELL" -o "$WORK/cb.png" --size 48x48 --frames 8 --save-every 4 \
+    --contact-sheet "$WORK/sheet.png" -q; then
+  for f in cb.png cb_f0004.png cb_f0008.png sheet.png; do
+    [ -s "$WORK/$f" ] || fail "normal run did not write $f"
+  done
+else
+  fail "normal PNG run exited non-zero"
+fi
+"$TOOL" "$CORNELL" -o "$WORK/cb.exr" --size 32x32 --frames 4 -q --gl osmesa || fail "EXR run (osmesa)"
+[ -s "$WORK/cb.exr" ] || fail "EXR not written"
+ls "$WORK" | grep -q tmp && fail "temporary files left behind"
+
+# A failed run keeps an output written before.
+cp "$WORK/cb.png" "$WORK/keep.png"
+"$TOOL" "$CORNELL" -o "$WORK/keep.png" --frames 0 2>/dev/null && fail "frames 0 accepted"
+cmp -s "$WORK/cb.png" "$WORK/keep.png" || fail "a failed run changed an existing output"
+
+"$TOOL" --help | grep -q -- "--occlusion-distance" || fail "--help lacks the progressive flags"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures failed"
+  exit 1
+fi
+echo "all render CLI checks passed"

@@ -1,0 +1,235 @@
+// The progressive scheduler without GL: the sample distributor (Algorithm 1), the sequences
+// it draws from, and the controller against a mock renderer.
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "progressive/controller.h"
+#include "progressive/distributor.h"
+#include "progressive/sequences.h"
+
+namespace penumbra::progressive {
+namespace {
+
+std::vector<LightInfo> lights(int n) {
+  std::vector<LightInfo> l;
+  for (int i = 0; i < n; ++i) {
+    l.push_back({i % 2 ? LightShape::Disk : LightShape::Rect, 1.0f + 0.5f * i});
+  }
+  return l;
+}
+
+TEST(DistributorTest, EveryLightCarriesItsFullEnergyAtFrameM) {
+  for (int m : {1, 2, 7, 64, 128, 1000, 4096}) {
+    for (int nl : {1, 3, 6}) {
+      for (int samples : {0, 1, 5, 64}) {
+        ProgressiveSettings s;
+        s.frames = m;
+        s.lightSamples = samples;
+        auto plan = distributeSamples(s, lights(nl));
+        ASSERT_EQ(plan.size(), static_cast<size_t>(m));
+        std::map<int, double> weight;
+        for (const auto& f : plan) {
+          for (const auto& ls : f.lights) weight[ls.light] += ls.weight;
+        }
+        for (int i = 0; i < nl; ++i) {
+          EXPECT_NEAR(weight[i], m, 1e-3 * m) << "m " << m << " light " << i << " n " << samples;
+        }
+      }
+    }
+  }
+}
+
+TEST(DistributorTest, ShadowPassesPerFrameDifferByAtMostOne) {
+  for (int m : {16, 100, 128, 333}) {
+    for (int nl : {1, 2, 5}) {
+      ProgressiveSettings s;
+      s.frames = m;
+      auto plan = distributeSamples(s, lights(nl));
+      const int start = directStartFrame(m, s.directDelay);
+      int lo = 1 << 30, hi = 0;
+      for (const auto& f : plan) {
+        const int n = static_cast<int>(f.lights.size());
+        if (f.frame < start) {
+          EXPECT_EQ(n, 0) << "frame " << f.frame;
+        } else {
+          lo = std::min(lo, n);
+          hi = std::max(hi, n);
+        }
+      }
+      EXPECT_LE(hi - lo, 1) << "m " << m << " lights " << nl;
+    }
+  }
+}
+
+TEST(DistributorTest, FrameOneIsEnvironmentOnlyAndThePrepassComesAtFrameTwo) {
+  ProgressiveSettings s;
+  s.frames = 128;
+  auto plan = distributeSamples(s, lights(2));
+  EXPECT_TRUE(plan[0].lights.empty());
+  EXPECT_FALSE(plan[0].occlusion);
+  EXPECT_FALSE(plan[0].renderPrepass);
+  EXPECT_EQ(plan[0].jitter, glm::vec2(0.0f));
+  EXPECT_TRUE(plan[1].renderPrepass);
+  EXPECT_TRUE(plan[1].occlusion);
+  for (size_t i = 2; i < plan.size(); ++i) EXPECT_FALSE(plan[i].renderPrepass);
+  EXPECT_EQ(directStartFrame(128, 0.3f), 38);
+  EXPECT_TRUE(plan[36].lights.empty());
+  EXPECT_FALSE(plan[37].lights.empty());
+}
+
+TEST(DistributorTest, SingleFrameEvaluatesEveryLightOnce) {
+  ProgressiveSettings s;
+  s.frames = 1;
+  auto plan = distributeSamples(s, lights(3));
+  ASSERT_EQ(plan.size(), 1u);
+  ASSERT_EQ(plan[0].lights.size(), 3u);
+  for (const auto& l : plan[0].lights) {
+    EXPECT_FLOAT_EQ(l.weight, 1.0f);
+    EXPECT_EQ(l.point, glm::vec2(0.5f));
+  }
+}
+
+TEST(DistributorTest, IsDeterministicAndSeeded) {
+  ProgressiveSettings s;
+  s.frames = 64;
+  auto a = distributeSamples(s, lights(2));
+  auto b = distributeSamples(s, lights(2));
+  s.seed = 12345;
+  auto c = distributeSamples(s, lights(2));
+  bool anyDifferent = false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].jitter, b[i].jitter);
+    EXPECT_EQ(a[i].sequence, b[i].sequence);
+    ASSERT_EQ(a[i].lights.size(), b[i].lights.size());
+    for (size_t k = 0; k < a[i].lights.size(); ++k) {
+      EXPECT_EQ(a[i].lights[k].point, b[i].lights[k].point);
+    }
+    anyDifferent |= a[i].jitter != c[i].jitter;
+  }
+  EXPECT_TRUE(anyDifferent);
+}
+
+TEST(SequencesTest, LightSamplesAreOrderedFromTheCentreOutward) {
+  for (auto shape : {LightShape::Rect, LightShape::Disk}) {
+    auto pts = lightSamplePoints(64, shape, 2.0f, 7);
+    ASSERT_EQ(pts.size(), 64u);
+    auto dist = [&](glm::vec2 p) {
+      return shape == LightShape::Disk ? glm::length(concentricDisk(p))
+                                       : glm::length((p - 0.5f) * glm::vec2(2.0f, 1.0f));
+    };
+    for (size_t i = 1; i < pts.size(); ++i) EXPECT_LE(dist(pts[i - 1]), dist(pts[i]) + 1e-6f);
+    for (auto p : pts) {
+      EXPECT_GE(p.x, 0.0f);
+      EXPECT_LT(p.x, 1.0f);
+      EXPECT_GE(p.y, 0.0f);
+      EXPECT_LT(p.y, 1.0f);
+    }
+  }
+}
+
+TEST(SequencesTest, LightSamplesAreStratified) {
+  // Each of the 8 x 8 strata of x holds exactly n / 8 points (Hammersley rows), and the
+  // y coordinates cover the strata evenly too.
+  auto pts = lightSamplePoints(64, LightShape::Rect, 1.0f, 3);
+  std::vector<int> cx(8), cy(8);
+  for (auto p : pts) {
+    cx[static_cast<size_t>(p.x * 8)]++;
+    cy[static_cast<size_t>(p.y * 8)]++;
+  }
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(cx[static_cast<size_t>(i)], 8);
+    EXPECT_EQ(cy[static_cast<size_t>(i)], 8);
+  }
+}
+
+TEST(SequencesTest, ConcentricMappingPreservesAreaAndStaysInTheDisk) {
+  // Uniform points in the square map to uniform points in the disk: the fraction inside
+  // radius r is r^2.
+  const int n = 200;
+  int inside = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      glm::vec2 d = concentricDisk({(i + 0.5f) / n, (j + 0.5f) / n});
+      ASSERT_LE(glm::length(d), 1.0f + 1e-5f);
+      inside += glm::length(d) < 0.5f;
+    }
+  }
+  EXPECT_NEAR(inside / double(n * n), 0.25, 0.005);
+  EXPECT_EQ(concentricDisk({0.5f, 0.5f}), glm::vec2(0.0f));
+}
+
+TEST(SequencesTest, JitterStaysInsideThePixelAndAveragesToZero) {
+  glm::vec2 mean(0.0f);
+  for (int f = 1; f <= 256; ++f) {
+    glm::vec2 j = jitter(f, 1);
+    EXPECT_LE(std::abs(j.x), 0.5f);
+    EXPECT_LE(std::abs(j.y), 0.5f);
+    mean += j;
+  }
+  mean /= 256.0f;
+  EXPECT_NEAR(mean.x, 0.0f, 0.01f);
+  EXPECT_NEAR(mean.y, 0.0f, 0.01f);
+  EXPECT_FLOAT_EQ(radicalInverse(1, 2), 0.5f);
+  EXPECT_FLOAT_EQ(radicalInverse(3, 2), 0.75f);
+}
+
+class MockRenderer : public FrameRenderer {
+ public:
+  MOCK_METHOD(Status, renderFrame, (const FramePlan&), (override));
+};
+
+TEST(ControllerTest, DrivesTheRendererFrameByFrameUntilConverged) {
+  ProgressiveSettings s;
+  s.frames = 5;
+  Controller c(s);
+  c.setLights(lights(1));
+  MockRenderer r;
+  std::vector<int> frames;
+  EXPECT_CALL(r, renderFrame(::testing::_))
+      .Times(5)
+      .WillRepeatedly([&](const FramePlan& p) {
+        frames.push_back(p.frame);
+        return Status{};
+      });
+  while (!c.converged()) ASSERT_TRUE(c.step(r).ok());
+  EXPECT_EQ(frames, (std::vector<int>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(*c.step(r), 0) << "a converged controller renders nothing";
+}
+
+TEST(ControllerTest, InvalidationAndChangedSettingsRestartAtFrameOne) {
+  ProgressiveSettings s;
+  s.frames = 10;
+  Controller c(s);
+  ::testing::NiceMock<MockRenderer> r;
+  ON_CALL(r, renderFrame(::testing::_)).WillByDefault(::testing::Return(Status{}));
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(c.step(r).ok());
+  EXPECT_EQ(c.framesDone(), 4);
+  c.setSettings(s);  // unchanged: keeps going
+  EXPECT_EQ(c.framesDone(), 4);
+  c.invalidate();  // camera moved
+  EXPECT_EQ(c.framesDone(), 0);
+  ASSERT_EQ(*c.step(r), 1);
+  s.occlusionDistance = 2.0f;
+  c.setSettings(s);
+  EXPECT_EQ(c.framesDone(), 0);
+  ASSERT_EQ(*c.step(r), 1);
+  c.setLights(lights(2));
+  EXPECT_EQ(c.framesDone(), 0);
+}
+
+TEST(ControllerTest, ARendererErrorStopsTheStepAndIsReturned) {
+  Controller c;
+  MockRenderer r;
+  EXPECT_CALL(r, renderFrame(::testing::_)).WillOnce(::testing::Return(Status(makeError("lost context"))));
+  auto f = c.step(r);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.message(), "lost context");
+  EXPECT_EQ(c.framesDone(), 0);
+}
+
+}  // namespace
+}  // namespace penumbra::progressive

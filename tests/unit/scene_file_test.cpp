@@ -1,0 +1,109 @@
+// Scene files: every documented field, defaults, and one-line errors for bad input.
+#include <gtest/gtest.h>
+
+#include "penumbra/scene_file.h"
+#include "test_support.h"
+
+namespace penumbra {
+namespace {
+
+TEST(SceneFileTest, ReadsEveryField) {
+  auto sf = parseSceneJson(R"({
+    "gltf": "model.glb",
+    "environment": {"file": "env/sky.hdr", "intensity": 2.5, "rotation": 90},
+    "camera": "front",
+    "resolution": [640, 360],
+    "exposure": -1.5,
+    "toneMapper": "aces",
+    "background": {"show": false, "blur": 0.25},
+    "progressive": {"frames": 256, "fd": 0.5, "occlusionDistance": 0.75, "lightSamples": 32,
+                    "shadowMapSize": 512, "screenSpaceIndirect": false, "seed": 7}
+  })", "/scenes", "test.json");
+  ASSERT_TRUE(sf.ok()) << sf.message();
+  EXPECT_EQ(sf->gltfPath, "/scenes/model.glb");
+  EXPECT_EQ(sf->environmentPath, "/scenes/env/sky.hdr");
+  EXPECT_EQ(sf->camera, "front");
+  const RenderSettings& s = sf->settings;
+  EXPECT_EQ(s.width, 640);
+  EXPECT_EQ(s.height, 360);
+  EXPECT_FLOAT_EQ(s.exposure, -1.5f);
+  EXPECT_EQ(s.toneMapper, ToneMapper::AcesFitted);
+  EXPECT_FLOAT_EQ(s.environmentIntensity, 2.5f);
+  EXPECT_FLOAT_EQ(s.environmentRotation, 90.0f);
+  EXPECT_FALSE(s.showBackground);
+  EXPECT_FLOAT_EQ(s.backgroundBlur, 0.25f);
+  EXPECT_EQ(s.progressive.frames, 256);
+  EXPECT_FLOAT_EQ(s.progressive.directDelay, 0.5f);
+  EXPECT_FLOAT_EQ(s.progressive.occlusionDistance, 0.75f);
+  EXPECT_EQ(s.progressive.lightSamples, 32);
+  EXPECT_EQ(s.progressive.shadowMapSize, 512);
+  EXPECT_FALSE(s.progressive.screenSpaceIndirect);
+  EXPECT_EQ(s.progressive.seed, 7u);
+  EXPECT_TRUE(sf->warnings.empty());
+}
+
+TEST(SceneFileTest, DefaultsAndUniformEnvironment) {
+  auto sf = parseSceneJson(R"({"gltf": "a.gltf", "environment": {"uniform": [0.1, 0.2, 0.3]}, "camera": 2})",
+                           "", "t.json");
+  ASSERT_TRUE(sf.ok()) << sf.message();
+  EXPECT_EQ(sf->settings, RenderSettings{});
+  EXPECT_TRUE(sf->environmentPath.empty());
+  EXPECT_FLOAT_EQ(sf->uniformEnvironment.z, 0.3f);
+  EXPECT_EQ(sf->camera, "2");
+}
+
+TEST(SceneFileTest, UnknownKeysAreWarnings) {
+  auto sf = parseSceneJson(R"({"gltf": "a.gltf", "exposre": 1, "progressive": {"frame": 3}})", "", "t.json");
+  ASSERT_TRUE(sf.ok());
+  ASSERT_EQ(sf->warnings.size(), 2u);
+  EXPECT_NE(sf->warnings[0].find("exposre"), std::string::npos);
+}
+
+TEST(SceneFileTest, BadInputIsAOneLineError) {
+  struct Case {
+    const char* json;
+    const char* expect;
+  } cases[] = {
+      {"{", "not valid JSON"},
+      {"[1, 2]", "JSON object"},
+      {R"({"exposure": 1})", "'gltf'"},
+      {R"({"gltf": 3})", "wrong type"},
+      {R"({"gltf": "a", "resolution": [1]})", "resolution"},
+      {R"({"gltf": "a", "resolution": [0, 10]})", "resolution"},
+      {R"({"gltf": "a", "toneMapper": "filmic"})", "tone mapper"},
+      {R"({"gltf": "a", "progressive": {"frames": 0}})", "frames"},
+      {R"({"gltf": "a", "progressive": {"frames": 5000}})", "frames"},
+      {R"({"gltf": "a", "progressive": {"fd": 1.5}})", "fd"},
+      {R"({"gltf": "a", "progressive": {"shadowMapSize": 1000}})", "shadow-map size"},
+      {R"({"gltf": "a", "environment": 5})", "environment"},
+      {R"({"gltf": "a", "environment": {"uniform": [1, 2]}})", "uniform"},
+  };
+  for (const auto& c : cases) {
+    auto sf = parseSceneJson(c.json, "", "bad.json");
+    ASSERT_FALSE(sf.ok()) << c.json;
+    EXPECT_NE(sf.message().find(c.expect), std::string::npos) << sf.message();
+    EXPECT_EQ(sf.message().find('\n'), std::string::npos);
+    EXPECT_EQ(sf.message().rfind("bad.json", 0), 0u) << sf.message();
+  }
+}
+
+TEST(SceneFileTest, MissingFileAndModelPaths) {
+  auto missing = loadSceneFile("/nonexistent/scene.json");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.message().find("/nonexistent/scene.json"), std::string::npos);
+  auto model = loadSceneFile(test::sourceDir() + "/assets/cornell_box/cornell_box.gltf");
+  ASSERT_TRUE(model.ok()) << model.message();
+  EXPECT_EQ(model->settings, RenderSettings{});
+  auto bundled = loadSceneFile(test::sourceDir() + "/assets/cornell_box/cornell_box.json");
+  ASSERT_TRUE(bundled.ok()) << bundled.message();
+  EXPECT_EQ(bundled->camera, "cornell");
+}
+
+TEST(SettingsTest, ToneMapperNamesRoundTrip) {
+  for (auto t : {ToneMapper::PbrNeutral, ToneMapper::AcesFitted, ToneMapper::Reinhard, ToneMapper::None}) {
+    EXPECT_EQ(*parseToneMapper(toneMapperName(t)), t);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
