@@ -24,6 +24,7 @@ uniform vec3 uCameraPos;
 uniform float uEnvWeight;  // weight of the environment term in this frame (0 or 1)
 
 uniform int uAreaCount;
+uniform int uAreaLight[MAX_AREA];        // light index of each sample (sorted)
 uniform vec3 uAreaPos[MAX_AREA];
 uniform vec3 uAreaDir[MAX_AREA];
 uniform vec3 uAreaRight[MAX_AREA];
@@ -86,24 +87,26 @@ void main() {
   }
 
 #if PN_AREA
-  // Area-light samples.
+  // Area-light samples, sorted by light: a light's unshadowed shading is the same for all of
+  // its samples, so it is computed once and only the shadow-map visibility differs.
+  float irradiance = 0.0;
+  vec3 specular = vec3(0.0);
   for (int i = 0; i < MAX_AREA; ++i) {
     if (i >= uAreaCount) break;
-    AreaLight L;
-    L.position = uAreaPos[i];
-    L.direction = uAreaDir[i];
-    L.right = uAreaRight[i];
-    L.up = uAreaUp[i];
-    L.size = uAreaShape[i].xy;
-    L.disk = uAreaShape[i].z > 0.5;
-    float irradiance;
-    vec3 specular;
-    evaluateAreaLight(L, vWorldPos, n, v, f0, alpha, irradiance, specular);
+    if (i == 0 || uAreaLight[i] != uAreaLight[i - 1]) {
+      AreaLight L;
+      L.position = uAreaPos[i];
+      L.direction = uAreaDir[i];
+      L.right = uAreaRight[i];
+      L.up = uAreaUp[i];
+      L.size = uAreaShape[i].xy;
+      L.disk = uAreaShape[i].z > 0.5;
+      evaluateAreaLight(L, vWorldPos, n, v, f0, alpha, irradiance, specular);
+    }
     if (irradiance <= 0.0) continue;
     float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
     color += uAreaRadiance[i] * visibility * (diffuseColor * irradiance * INV_PI + specular);
   }
-
 #endif
 #if PN_PUNCTUAL
   // Punctual lights (KHR_lights_punctual), unshadowed.

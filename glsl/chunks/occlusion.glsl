@@ -10,33 +10,44 @@ uniform mat4 uView;
 uniform mat4 uProjection;  // unjittered
 uniform vec2 uViewportSize;
 
-const int OCCLUSION_STEPS = 6;
+const int OCCLUSION_STEPS = 4;
 
-// Marches from world point p along unit direction d up to uOcclusionDistance. Returns true
-// on a hit and the radiance found there (when indirect light is on).
+// Marches from world point p along unit direction d up to uOcclusionDistance, at steps
+// jittered per frame (so over the frames the march covers the whole segment). Returns true on
+// a hit and the radiance found there (when indirect light is on).
 bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
   hitRadiance = vec3(0.0);
   vec3 vp = (uView * vec4(p, 1.0)).xyz;
   vec3 vd = mat3(uView) * d;
+  // Clip-space position is linear in t: project the start and the direction once.
+  vec4 c0 = uProjection * vec4(vp, 1.0);
+  vec4 c1 = uProjection * vec4(vd, 0.0);
+  float stepLength = uOcclusionDistance / float(OCCLUSION_STEPS);
+  // A sample that lands in the starting pixel compares the ray with the depth of the very
+  // surface it leaves, which only measures depth-buffer discretisation: skip it.
+  ivec2 origin = ivec2((c0.xy / c0.w * 0.5 + 0.5) * uViewportSize);
   for (int i = 0; i < OCCLUSION_STEPS; ++i) {
-    float t = uOcclusionDistance * (float(i) + jitter) / float(OCCLUSION_STEPS);
-    vec3 q = vp + vd * t;
-    if (q.z >= -1e-4) return false;  // behind the camera
-    vec4 clip = uProjection * vec4(q, 1.0);
+    float t = stepLength * (float(i) + jitter);
+    vec4 clip = c0 + c1 * t;
+    float rayDepth = clip.w;  // = -view z for a perspective projection
+    if (rayDepth <= 1e-4) return false;  // behind the camera
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
-    vec4 g = texelFetch(uPrepass, ivec2(uv * uViewportSize), 0);
+    ivec2 texel = ivec2(uv * uViewportSize);
+    if (texel == origin) continue;
+    vec4 g = texelFetch(uPrepass, texel, 0);
     float sceneDepth = g.w;
-    float rayDepth = -q.z;
     // Occluded when the ray is behind the visible surface, but not by more than the trace
     // length (a thin-object guess: farther surfaces are assumed not to block).
+    // Occluded when the ray is behind the visible surface, but not by more than the trace
+    // length (a thin-object guess: farther surfaces are assumed not to block), and when that
+    // surface faces the ray: passing behind a surface that faces away from it means the ray
+    // is behind the object, where the depth buffer knows nothing.
     if (sceneDepth > 0.0 && rayDepth > sceneDepth + 0.002 * rayDepth &&
-        rayDepth - sceneDepth < uOcclusionDistance) {
+        rayDepth - sceneDepth < uOcclusionDistance && dot(g.xyz, -vd) > 0.0) {
       if (uIndirectEnabled) {
-        // Only surfaces that face the shading point send light back toward it.
-        float facing = dot(g.xyz, -vd);
         vec4 acc = texture(uAccumulated, uv);
-        hitRadiance = facing > 0.0 ? acc.rgb * saturate(acc.a) : vec3(0.0);
+        hitRadiance = acc.rgb * saturate(acc.a);
       }
       return true;
     }

@@ -68,7 +68,9 @@ TEST_F(RendererGLTest, WhiteFurnaceLambertianSphereShowsTheEnvironment) {
     for (int y = 10; y < 38; ++y) {
       for (int x = 10; x < 38; ++x) {
         const float* p = img->pixel(x, y);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], 1.0f, 0.01f) << x << "," << y;
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(p[c], 1.0f, 0.01f) << "pixel " << x << "," << y << ", " << frames << " frames";
+        }
         ++checked;
       }
     }

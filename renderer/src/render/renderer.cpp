@@ -186,7 +186,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
     p.set("uViewProj", jitteredViewProj);
     p.set("uCameraPos", cm.position);
     environment->bind(p, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
-    p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect && plan.frame > 2 ? 1 : 0);
+    // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
+    p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect ? 1 : 0);
     (occlusion ? targets->prepass.color : dummy2d).bind(kUnitPrepass);
     targets->accumulation[static_cast<size_t>(targets->current)].color.bind(kUnitAccumulated);
     p.set("uPrepass", kUnitPrepass);
@@ -241,6 +242,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
            i < area.size() && batch.size() < kMaxAreaPerBatch; ++i) {
         batch.push_back(area[i]);
       }
+      std::stable_sort(batch.begin(), batch.end(), [](const LightSample* a, const LightSample* b) {
+        return a->light < b->light;
+      });
       for (size_t i = 0; i < batch.size(); ++i) {
         const Light& l = lights[static_cast<size_t>(batch[i]->light)];
         if (batch[i]->shadowed && scene) {
@@ -309,10 +313,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
     // Area-light samples of this batch.
     std::vector<glm::vec3> pos, dir, right, up, radiance;
     std::vector<glm::vec4> shape;
+    std::vector<int> lightIds;
     std::vector<glm::mat4> shadowMatrices(passes::kMaxShadowMaps, glm::mat4(1.0f));
     std::vector<glm::vec4> shadowParams(passes::kMaxShadowMaps, glm::vec4(0.0f));
     for (size_t i = 0; i < batch.size(); ++i) {
       const Light& l = lights[static_cast<size_t>(batch[i]->light)];
+      lightIds.push_back(batch[i]->light);
       pos.push_back(l.position);
       dir.push_back(l.direction);
       right.push_back(l.right);
@@ -327,6 +333,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
       }
     }
     p.set("uAreaCount", static_cast<int>(batch.size()));
+    for (size_t i = 0; i < lightIds.size(); ++i) {
+      p.set("uAreaLight[" + std::to_string(i) + "]", lightIds[i]);
+    }
     p.set("uAreaPos", std::span<const glm::vec3>(pos));
     p.set("uAreaDir", std::span<const glm::vec3>(dir));
     p.set("uAreaRight", std::span<const glm::vec3>(right));
