@@ -26,7 +26,8 @@ std::vector<float> gpuIrradiance(const LightDesc& l, glm::vec3 start, glm::vec3 
   gl::ShaderLibrary library;
   auto pass = passes::FullscreenPass::create(library, "test/area_irradiance.frag");
   EXPECT_TRUE(pass.ok()) << (pass.ok() ? "" : pass.message());
-  auto tex = gl::Texture2D::create({.width = kPoints, .height = 1, .format = gl::PixelFormat::RGBA32F});
+  auto tex =
+      gl::Texture2D::create({.width = kPoints, .height = 1, .format = gl::PixelFormat::RGBA32F});
   gl::Framebuffer fb = gl::Framebuffer::create();
   fb.attachColor(0, *tex);
   fb.setDrawBuffers(1);

@@ -79,7 +79,9 @@ std::vector<float> renderAccumulated(gl::ShaderLibrary& library, gl::PixelFormat
   target.framebuffer.bind();
   gl::setViewport(0, 0, kSize, kSize);
   gl::clearBufferFloat(0, 0, 0, 0, 0);
-  gl::apply({.depthTest = gl::DepthTest::Off, .depthWrite = false, .blend = gl::Blend::Additive,
+  gl::apply({.depthTest = gl::DepthTest::Off,
+             .depthWrite = false,
+             .blend = gl::Blend::Additive,
              .cull = gl::Cull::None});
   (*program)->use();
   const auto js = jitters();
@@ -193,7 +195,8 @@ TEST_F(FoundationGLTest, ProgramCacheIsKeyedByFilesAndDefines) {
 }
 
 TEST_F(FoundationGLTest, AbsurdTextureSizeIsAnError) {
-  auto tex = gl::Texture2D::create({.width = 1 << 20, .height = 4, .format = gl::PixelFormat::RGBA8});
+  auto tex =
+      gl::Texture2D::create({.width = 1 << 20, .height = 4, .format = gl::PixelFormat::RGBA8});
   ASSERT_FALSE(tex.ok());
   EXPECT_NE(tex.message().find("outside"), std::string::npos);
 }

@@ -37,7 +37,8 @@ Scene scene(bool withPlate) {
   Scene s;
   s.materials.push_back(lambert(glm::vec3(0.8f)));
   s.meshes.push_back(quadMesh(8.0f, 0.0f, 0));
-  if (withPlate) s.meshes.push_back(boxMesh({-4.0f, kPlateY, -4.0f}, {0.0f, kPlateY + 0.02f, 4.0f}, 0));
+  if (withPlate)
+    s.meshes.push_back(boxMesh({-4.0f, kPlateY, -4.0f}, {0.0f, kPlateY + 0.02f, 4.0f}, 0));
   Light l;
   l.type = LightType::Rect;
   l.intensity = 5.0f;
@@ -77,11 +78,13 @@ TEST_F(PenumbraGLTest, ConvergedPenumbraMatchesVisibilityIntegral) {
     // Unproject the pixel centre (row 0 = top) and intersect the floor y = 0.
     const float ndcX = (x + 0.5f) / rs.width * 2.0f - 1.0f;
     const float ndcY = 1.0f - (row + 0.5f) / rs.height * 2.0f;
-    glm::vec4 a = inv * glm::vec4(ndcX, ndcY, -1.0f, 1.0f), b = inv * glm::vec4(ndcX, ndcY, 0.5f, 1.0f);
+    glm::vec4 a = inv * glm::vec4(ndcX, ndcY, -1.0f, 1.0f),
+              b = inv * glm::vec4(ndcX, ndcY, 0.5f, 1.0f);
     glm::vec3 p0 = glm::vec3(a) / a.w, p1 = glm::vec3(b) / b.w;
     const float t = p0.y / (p0.y - p1.y);
     const glm::vec3 floor = p0 + (p1 - p0) * t;
-    const double expected = visibleFraction(floor.x, floor.z, true) / visibleFraction(floor.x, floor.z, false);
+    const double expected =
+        visibleFraction(floor.x, floor.z, true) / visibleFraction(floor.x, floor.z, false);
     const double measured = shadowed->pixel(x, row)[0] / std::max(lit->pixel(x, row)[0], 1e-6f);
     if (expected > 0.05 && expected < 0.95) ++inPenumbra;
     worst = std::max(worst, std::abs(measured - expected));

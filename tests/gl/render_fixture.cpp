@@ -58,8 +58,8 @@ Material lambert(glm::vec3 albedo) {
 
 Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDeg) {
   Camera c;
-  glm::vec3 up = std::abs(glm::normalize(target - eye).y) > 0.99f ? glm::vec3(0, 0, -1)
-                                                                   : glm::vec3(0, 1, 0);
+  glm::vec3 up =
+      std::abs(glm::normalize(target - eye).y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
   c.world = glm::inverse(glm::lookAt(eye, target, up));
   c.yfov = glm::radians(yfovDeg);
   c.znear = 0.01f;
@@ -77,9 +77,8 @@ void finishScene(Scene& scene) {
   }
 }
 
-Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env,
-                             const Camera& camera, RenderSettings settings,
-                             const RendererOptions& options) {
+Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, const Camera& camera,
+                             RenderSettings settings, const RendererOptions& options) {
   auto r = Renderer::create(options);
   if (!r) return r.error();
   PN_TRY((*r)->setSettings(settings));
@@ -105,7 +104,8 @@ Mesh sphereMesh(glm::vec3 c, float r, int material, int segments) {
     const float theta = static_cast<float>(M_PI) * j / rings;
     for (int i = 0; i <= segments; ++i) {
       const float phi = 2.0f * static_cast<float>(M_PI) * i / segments;
-      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                  -std::sin(theta) * std::sin(phi));
       p.positions.push_back(c + r * n);
       p.normals.push_back(n);
       p.bounds.extend(c + r * n);

@@ -69,7 +69,8 @@ TEST_F(RendererGLTest, WhiteFurnaceLambertianSphereShowsTheEnvironment) {
       for (int x = 10; x < 38; ++x) {
         const float* p = img->pixel(x, y);
         for (int c = 0; c < 3; ++c) {
-          EXPECT_NEAR(p[c], 1.0f, 0.01f) << "pixel " << x << "," << y << ", " << frames << " frames";
+          EXPECT_NEAR(p[c], 1.0f, 0.01f)
+              << "pixel " << x << "," << y << ", " << frames << " frames";
         }
         ++checked;
       }

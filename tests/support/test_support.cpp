@@ -46,8 +46,8 @@ std::string outputDir() {
   (void)writeImage(base + ".diff.png", diff->heatmap);
   std::ostringstream msg;
   msg << name << ": max diff " << diff->maxAbs << " (allowed " << tolerance.maxAbs
-      << "), mean diff " << diff->meanAbs << " (allowed " << tolerance.meanAbs << "); see "
-      << base << ".{actual,expected,diff}.png";
+      << "), mean diff " << diff->meanAbs << " (allowed " << tolerance.meanAbs << "); see " << base
+      << ".{actual,expected,diff}.png";
   return ::testing::AssertionFailure() << msg.str();
 }
 

@@ -189,12 +189,10 @@ TEST(ControllerTest, DrivesTheRendererFrameByFrameUntilConverged) {
   c.setLights(lights(1));
   MockRenderer r;
   std::vector<int> frames;
-  EXPECT_CALL(r, renderFrame(::testing::_))
-      .Times(5)
-      .WillRepeatedly([&](const FramePlan& p) {
-        frames.push_back(p.frame);
-        return Status{};
-      });
+  EXPECT_CALL(r, renderFrame(::testing::_)).Times(5).WillRepeatedly([&](const FramePlan& p) {
+    frames.push_back(p.frame);
+    return Status{};
+  });
   while (!c.converged()) ASSERT_TRUE(c.step(r).ok());
   EXPECT_EQ(frames, (std::vector<int>{1, 2, 3, 4, 5}));
   EXPECT_EQ(*c.step(r), 0) << "a converged controller renders nothing";
@@ -224,7 +222,8 @@ TEST(ControllerTest, InvalidationAndChangedSettingsRestartAtFrameOne) {
 TEST(ControllerTest, ARendererErrorStopsTheStepAndIsReturned) {
   Controller c;
   MockRenderer r;
-  EXPECT_CALL(r, renderFrame(::testing::_)).WillOnce(::testing::Return(Status(makeError("lost context"))));
+  EXPECT_CALL(r, renderFrame(::testing::_))
+      .WillOnce(::testing::Return(Status(makeError("lost context"))));
   auto f = c.step(r);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.message(), "lost context");

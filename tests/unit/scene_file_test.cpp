@@ -18,7 +18,8 @@ TEST(SceneFileTest, ReadsEveryField) {
     "background": {"show": false, "blur": 0.25},
     "progressive": {"frames": 256, "fd": 0.5, "occlusionDistance": 0.75, "lightSamples": 32,
                     "shadowMapSize": 512, "screenSpaceIndirect": false, "seed": 7}
-  })", "/scenes", "test.json");
+  })",
+                           "/scenes", "test.json");
   ASSERT_TRUE(sf.ok()) << sf.message();
   EXPECT_EQ(sf->gltfPath, "/scenes/model.glb");
   EXPECT_EQ(sf->environmentPath, "/scenes/env/sky.hdr");
@@ -43,8 +44,9 @@ TEST(SceneFileTest, ReadsEveryField) {
 }
 
 TEST(SceneFileTest, DefaultsAndUniformEnvironment) {
-  auto sf = parseSceneJson(R"({"gltf": "a.gltf", "environment": {"uniform": [0.1, 0.2, 0.3]}, "camera": 2})",
-                           "", "t.json");
+  auto sf = parseSceneJson(
+      R"({"gltf": "a.gltf", "environment": {"uniform": [0.1, 0.2, 0.3]}, "camera": 2})", "",
+      "t.json");
   ASSERT_TRUE(sf.ok()) << sf.message();
   EXPECT_EQ(sf->settings, RenderSettings{});
   EXPECT_TRUE(sf->environmentPath.empty());
@@ -53,7 +55,8 @@ TEST(SceneFileTest, DefaultsAndUniformEnvironment) {
 }
 
 TEST(SceneFileTest, UnknownKeysAreWarnings) {
-  auto sf = parseSceneJson(R"({"gltf": "a.gltf", "exposre": 1, "progressive": {"frame": 3}})", "", "t.json");
+  auto sf = parseSceneJson(R"({"gltf": "a.gltf", "exposre": 1, "progressive": {"frame": 3}})", "",
+                           "t.json");
   ASSERT_TRUE(sf.ok());
   ASSERT_EQ(sf->warnings.size(), 2u);
   EXPECT_NE(sf->warnings[0].find("exposre"), std::string::npos);
@@ -100,7 +103,8 @@ TEST(SceneFileTest, MissingFileAndModelPaths) {
 }
 
 TEST(SettingsTest, ToneMapperNamesRoundTrip) {
-  for (auto t : {ToneMapper::PbrNeutral, ToneMapper::AcesFitted, ToneMapper::Reinhard, ToneMapper::None}) {
+  for (auto t :
+       {ToneMapper::PbrNeutral, ToneMapper::AcesFitted, ToneMapper::Reinhard, ToneMapper::None}) {
     EXPECT_EQ(*parseToneMapper(toneMapperName(t)), t);
   }
 }

@@ -32,7 +32,9 @@ long peakRssMb() {
 }
 
 // Reads one pixel so the GPU has finished (a full glFinish equivalent for timing).
-void sync(Renderer& r) { (void)r.lastFrame(); }
+void sync(Renderer& r) {
+  (void)r.lastFrame();
+}
 
 struct Row {
   std::string scene;
@@ -81,15 +83,22 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames) {
   auto t2 = Clock::now();
   if (!first || !done) return makeError("read-back failed");
   sync(**r);
-  return Row{sceneFile.substr(sceneFile.find_last_of('/') + 1), w, h, frames, ms(t0, t1),
-             ms(t1, t2) / std::max(frames - 1, 1), ms(t0, t2) / 1000.0, scene->triangleCount()};
+  return Row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
+             w,
+             h,
+             frames,
+             ms(t0, t1),
+             ms(t1, t2) / std::max(frames - 1, 1),
+             ms(t0, t2) / 1000.0,
+             scene->triangleCount()};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"penumbra-bench: speed and memory of the progressive renderer"};
-  std::vector<std::string> scenes = {"assets/cornell_box/cornell_box.json", "assets/dense/dense.json"};
+  std::vector<std::string> scenes = {"assets/cornell_box/cornell_box.json",
+                                     "assets/dense/dense.json"};
   std::vector<std::string> sizes = {"1280x720", "1920x1080"};
   int frames = 128;
   app.add_option("--scene", scenes, "scene files (repeatable)");
@@ -103,7 +112,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("# %s\n", (*ctx)->description().c_str());
-  std::printf("| scene | triangles | size | m | first frame (ms) | per frame (ms) | time to m (s) |\n");
+  std::printf(
+      "| scene | triangles | size | m | first frame (ms) | per frame (ms) | time to m (s) |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const auto& scene : scenes) {
     for (const auto& size : sizes) {

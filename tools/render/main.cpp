@@ -70,12 +70,13 @@ Image contactSheet(const std::vector<Image>& frames) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"penumbra-render: progressive physically-based rendering of glTF scenes lit by an\n"
-               "HDR environment and area lights. OUT.png is the displayed image (exposure, tone\n"
-               "mapping, sRGB); OUT.exr is the linear radiance before exposure."};
+  CLI::App app{
+      "penumbra-render: progressive physically-based rendering of glTF scenes lit by an\n"
+      "HDR environment and area lights. OUT.png is the displayed image (exposure, tone\n"
+      "mapping, sRGB); OUT.exr is the linear radiance before exposure."};
   app.set_version_flag("--version", std::string("penumbra-render ") + version());
   std::string scenePath, outPath, size, cameraName, envPath, toneMapper, glName = "auto",
-                                                                        contactPath;
+                                                                         contactPath;
   float exposure = 0, fd = 0, occDistance = 0, envIntensity = -1, envRotation = 0;
   int frames = 0, lightSamples = -1, shadowSize = 0, saveEvery = 0;
   uint32_t seed = 0;
@@ -84,17 +85,23 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)")->required();
   app.add_option("--size", size, "resolution WxH (default from the scene file, else 1280x720)");
   app.add_option("--camera", cameraName, "camera name or index");
-  app.add_option("--env", envPath, "environment: packed .hdr from penumbra-prefilter or a panorama");
+  app.add_option("--env", envPath,
+                 "environment: packed .hdr from penumbra-prefilter or a panorama");
   auto* expOpt = app.add_option("--exposure", exposure, "exposure in EV");
   app.add_option("--tonemap", toneMapper, "pbr-neutral (default), aces, reinhard or none");
-  auto* intensityOpt = app.add_option("--env-intensity", envIntensity, "environment intensity multiplier");
-  auto* rotOpt = app.add_option("--env-rotation", envRotation, "environment rotation about +Y, degrees");
+  auto* intensityOpt =
+      app.add_option("--env-intensity", envIntensity, "environment intensity multiplier");
+  auto* rotOpt =
+      app.add_option("--env-rotation", envRotation, "environment rotation about +Y, degrees");
   app.add_flag("--no-background", noBackground, "black background instead of the environment");
   app.add_option("--gl", glName, "GL backend: auto, egl, egl-device or osmesa");
-  auto* framesOpt = app.add_option("--frames", frames, "intermediate frames m (1..4096, default 128)");
+  auto* framesOpt =
+      app.add_option("--frames", frames, "intermediate frames m (1..4096, default 128)");
   auto* fdOpt = app.add_option("--fd", fd, "fraction of frames before direct light starts (0.3)");
-  auto* occOpt = app.add_option("--occlusion-distance", occDistance, "occlusion distance d_occ (m)");
-  auto* samplesOpt = app.add_option("--light-samples", lightSamples, "shadow-map samples per area light (0 = auto)");
+  auto* occOpt =
+      app.add_option("--occlusion-distance", occDistance, "occlusion distance d_occ (m)");
+  auto* samplesOpt = app.add_option("--light-samples", lightSamples,
+                                    "shadow-map samples per area light (0 = auto)");
   auto* shadowOpt = app.add_option("--shadow-size", shadowSize, "shadow-map size (power of two)");
   app.add_flag("--no-ssgi", noSsgi, "turn off one-bounce screen-space indirect light");
   auto* seedOpt = app.add_option("--seed", seed, "seed of the sample sequences");
@@ -138,7 +145,8 @@ int main(int argc, char** argv) {
   if (!cameraName.empty()) sf.camera = cameraName;
   if (auto st = validate(s); !st) return fail(st.message());
   if (!quiet) {
-    for (const auto& w : sf.warnings) std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
+    for (const auto& w : sf.warnings)
+      std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
   }
   // Refuse an output we cannot write before spending time on the render.
   const fs::path outDir = fs::path(outPath).parent_path();
@@ -158,7 +166,8 @@ int main(int argc, char** argv) {
   auto scene = loadGltf(sf.gltfPath);
   if (!scene) return fail(scene.message());
   if (!quiet) {
-    for (const auto& w : scene->warnings) std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
+    for (const auto& w : scene->warnings)
+      std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
   }
   PackedEnvironment env;
   if (!sf.environmentPath.empty()) {
@@ -169,7 +178,8 @@ int main(int argc, char** argv) {
     env = uniformEnvironment(sf.uniformEnvironment);
   }
 
-  auto renderer = Renderer::create({.desktopGl = (*context)->isDesktopGl(), .forceHalfFloat = halfFloat});
+  auto renderer =
+      Renderer::create({.desktopGl = (*context)->isDesktopGl(), .forceHalfFloat = halfFloat});
   if (!renderer) return fail(renderer.message());
   Renderer& r = **renderer;
   if (info) {
@@ -199,7 +209,8 @@ int main(int argc, char** argv) {
     if (saveEvery > 0 && (*frame % saveEvery == 0)) {
       char suffix[32];
       std::snprintf(suffix, sizeof suffix, "_f%04d.png", *frame);
-      const std::string p = (fs::path(outPath).parent_path() / fs::path(outPath).stem()).string() + suffix;
+      const std::string p =
+          (fs::path(outPath).parent_path() / fs::path(outPath).stem()).string() + suffix;
       if (auto st = writeOutput(p, r); !st) return fail(st.message());
     }
     if (!contactPath.empty() && (*frame == nextSheetFrame || *frame == s.progressive.frames)) {

@@ -5,7 +5,9 @@
 namespace penumbra::tools {
 
 ProgressBar::ProgressBar(std::string label, int total, bool enabled)
-    : label_(std::move(label)), total_(total), enabled_(enabled),
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled),
       start_(std::chrono::steady_clock::now()) {}
 
 void ProgressBar::update(int done) {

@@ -19,7 +19,9 @@ struct Error {
   std::string message;
 };
 
-inline Error makeError(std::string message) { return Error{std::move(message)}; }
+inline Error makeError(std::string message) {
+  return Error{std::move(message)};
+}
 
 template <class T>
 class [[nodiscard]] Result {
@@ -86,14 +88,14 @@ using Status = Result<void>;
 }  // namespace penumbra
 
 // Precondition for programming mistakes; never for bad input (use Result for that).
-#define PN_CHECK(cond, msg)                                         \
-  do {                                                              \
+#define PN_CHECK(cond, msg)                                                 \
+  do {                                                                      \
     if (!(cond)) ::penumbra::checkFailed(#cond, (msg), __FILE__, __LINE__); \
   } while (0)
 
 // Returns the error of a failed Result from the enclosing function (which returns a Result).
-#define PN_TRY(expr)                                     \
-  do {                                                   \
-    auto&& pn_try_result_ = (expr);                      \
+#define PN_TRY(expr)                                         \
+  do {                                                       \
+    auto&& pn_try_result_ = (expr);                          \
     if (!pn_try_result_.ok()) return pn_try_result_.error(); \
   } while (0)

@@ -17,10 +17,10 @@ struct LightSample {
 };
 
 struct FramePlan {
-  int frame = 1;            // 1-based index of this intermediate frame
-  int totalFrames = 1;      // m
-  glm::vec2 jitter{0.0f};   // sub-pixel offset of the projection, in pixels, in [-0.5, 0.5]
-  bool occlusion = false;   // evaluate progressive occlusion (needs the prepass)
+  int frame = 1;               // 1-based index of this intermediate frame
+  int totalFrames = 1;         // m
+  glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels, in [-0.5, 0.5]
+  bool occlusion = false;      // evaluate progressive occlusion (needs the prepass)
   bool renderPrepass = false;  // (re)render the depth and normal prepass before this frame
   glm::vec2 sequence{0.0f};    // this frame's low-discrepancy point for occlusion sampling
   std::vector<LightSample> lights;

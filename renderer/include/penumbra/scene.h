@@ -116,7 +116,7 @@ struct Camera {
   float yfov = 0.8f;      // radians
   float aspect = 0.0f;    // 0 = take the viewport's
   float znear = 0.05f;
-  float zfar = 0.0f;      // 0 = infinite
+  float zfar = 0.0f;  // 0 = infinite
 };
 
 enum class LightType { Rect, Disk, Point, Spot, Directional };
@@ -127,20 +127,21 @@ struct Light {
   glm::vec3 color{1.0f};
   // Rect/disk: luminance in nits. Point/spot: candela. Directional: lux.
   float intensity = 1.0f;
-  glm::vec3 position{0.0f};    // world centre
+  glm::vec3 position{0.0f};       // world centre
   glm::vec3 direction{0, 0, -1};  // world direction of emission (area, spot, directional)
-  glm::vec3 right{1, 0, 0};    // world unit vector along the rect's width (local +X)
-  glm::vec3 up{0, 1, 0};       // world unit vector along the rect's height (local +Y)
-  float width = 1.0f;          // rect width; disk diameter
-  float height = 1.0f;         // rect height; disk diameter
-  float range = 0.0f;          // punctual range (0 = infinite)
+  glm::vec3 right{1, 0, 0};       // world unit vector along the rect's width (local +X)
+  glm::vec3 up{0, 1, 0};          // world unit vector along the rect's height (local +Y)
+  float width = 1.0f;             // rect width; disk diameter
+  float height = 1.0f;            // rect height; disk diameter
+  float range = 0.0f;             // punctual range (0 = infinite)
   float innerConeAngle = 0.0f;
   float outerConeAngle = 0.785398f;
 
   bool isArea() const { return type == LightType::Rect || type == LightType::Disk; }
   float area() const {
-    return type == LightType::Rect ? width * height
-                                   : (type == LightType::Disk ? 0.785398163f * width * width : 0.0f);
+    return type == LightType::Rect
+               ? width * height
+               : (type == LightType::Disk ? 0.785398163f * width * width : 0.0f);
   }
 };
 

@@ -17,7 +17,7 @@ struct SceneFile {
   std::string gltfPath;         // resolved against the scene file's folder
   std::string environmentPath;  // empty: a uniform environment of `uniformEnvironment`
   glm::vec3 uniformEnvironment{1.0f};
-  std::string camera;           // name or index; empty: the first camera, else a default one
+  std::string camera;  // name or index; empty: the first camera, else a default one
   RenderSettings settings;
   std::vector<std::string> warnings;  // unknown keys and the like
 };

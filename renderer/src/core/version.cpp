@@ -1,5 +1,7 @@
 #include "penumbra/version.h"
 
 namespace penumbra {
-const char* version() { return PENUMBRA_VERSION; }
+const char* version() {
+  return PENUMBRA_VERSION;
+}
 }  // namespace penumbra

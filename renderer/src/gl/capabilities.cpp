@@ -13,15 +13,20 @@ bool hasExtension(const char* name) {
   GLint n = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &n);
   for (GLint i = 0; i < n; ++i) {
-    const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    const auto* e =
+        reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
     if (e && std::strcmp(e, name) == 0) return true;
   }
   return false;
 }
 
 bool renderable(PixelFormat format) {
-  auto tex = Texture2D::create({.width = 4, .height = 4, .format = format, .levels = 1,
-                                .sampler = {.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}});
+  auto tex =
+      Texture2D::create({.width = 4,
+                         .height = 4,
+                         .format = format,
+                         .levels = 1,
+                         .sampler = {.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}});
   if (!tex) {
     clearErrors();
     return false;
@@ -55,8 +60,7 @@ Capabilities queryCapabilities(bool desktopGl, const CapabilityOptions& options)
   // Desktop GL has these in core; ES and WebGL need the extensions.
   c.floatLinear = desktopGl || hasExtension("GL_OES_texture_float_linear") ||
                   hasExtension("OES_texture_float_linear");
-  c.floatBlend = desktopGl || hasExtension("GL_EXT_float_blend") ||
-                 hasExtension("EXT_float_blend");
+  c.floatBlend = desktopGl || hasExtension("GL_EXT_float_blend") || hasExtension("EXT_float_blend");
   c.timerQuery = desktopGl || hasExtension("GL_EXT_disjoint_timer_query") ||
                  hasExtension("EXT_disjoint_timer_query_webgl2");
   clearErrors();

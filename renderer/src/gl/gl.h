@@ -3,8 +3,8 @@
 #pragma once
 
 #ifdef __EMSCRIPTEN__
-#include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
+#include <GLES3/gl3.h>
 #else
 #include <glad/gles2.h>
 #endif

@@ -38,13 +38,29 @@ class Handle {
   GLuint id_ = 0;
 };
 
-inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-inline void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
-inline void deleteShader(GLuint id) { glDeleteShader(id); }
-inline void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+inline void deleteTexture(GLuint id) {
+  glDeleteTextures(1, &id);
+}
+inline void deleteBuffer(GLuint id) {
+  glDeleteBuffers(1, &id);
+}
+inline void deleteVertexArray(GLuint id) {
+  glDeleteVertexArrays(1, &id);
+}
+inline void deleteFramebuffer(GLuint id) {
+  glDeleteFramebuffers(1, &id);
+}
+inline void deleteRenderbuffer(GLuint id) {
+  glDeleteRenderbuffers(1, &id);
+}
+inline void deleteProgram(GLuint id) {
+  glDeleteProgram(id);
+}
+inline void deleteShader(GLuint id) {
+  glDeleteShader(id);
+}
+inline void deleteQuery(GLuint id) {
+  glDeleteQueries(1, &id);
+}
 
 }  // namespace penumbra::gl

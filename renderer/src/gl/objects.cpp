@@ -9,39 +9,54 @@ namespace {
 
 GLenum bufferTarget(BufferKind k) {
   switch (k) {
-    case BufferKind::Vertex: return GL_ARRAY_BUFFER;
-    case BufferKind::Index: return GL_ELEMENT_ARRAY_BUFFER;
-    case BufferKind::Uniform: return GL_UNIFORM_BUFFER;
+    case BufferKind::Vertex:
+      return GL_ARRAY_BUFFER;
+    case BufferKind::Index:
+      return GL_ELEMENT_ARRAY_BUFFER;
+    case BufferKind::Uniform:
+      return GL_UNIFORM_BUFFER;
   }
   return GL_ARRAY_BUFFER;
 }
 
 GLenum glType(AttribType t) {
   switch (t) {
-    case AttribType::Float: return GL_FLOAT;
-    case AttribType::UInt8: return GL_UNSIGNED_BYTE;
-    case AttribType::UInt16: return GL_UNSIGNED_SHORT;
-    case AttribType::Int8: return GL_BYTE;
-    case AttribType::Int16: return GL_SHORT;
+    case AttribType::Float:
+      return GL_FLOAT;
+    case AttribType::UInt8:
+      return GL_UNSIGNED_BYTE;
+    case AttribType::UInt16:
+      return GL_UNSIGNED_SHORT;
+    case AttribType::Int8:
+      return GL_BYTE;
+    case AttribType::Int16:
+      return GL_SHORT;
   }
   return GL_FLOAT;
 }
 
 GLenum glIndexType(IndexType t) {
   switch (t) {
-    case IndexType::UInt8: return GL_UNSIGNED_BYTE;
-    case IndexType::UInt16: return GL_UNSIGNED_SHORT;
-    case IndexType::UInt32: return GL_UNSIGNED_INT;
+    case IndexType::UInt8:
+      return GL_UNSIGNED_BYTE;
+    case IndexType::UInt16:
+      return GL_UNSIGNED_SHORT;
+    case IndexType::UInt32:
+      return GL_UNSIGNED_INT;
   }
   return GL_UNSIGNED_INT;
 }
 
 GLenum glPrimitive(Primitive p) {
   switch (p) {
-    case Primitive::Triangles: return GL_TRIANGLES;
-    case Primitive::TriangleStrip: return GL_TRIANGLE_STRIP;
-    case Primitive::Lines: return GL_LINES;
-    case Primitive::Points: return GL_POINTS;
+    case Primitive::Triangles:
+      return GL_TRIANGLES;
+    case Primitive::TriangleStrip:
+      return GL_TRIANGLE_STRIP;
+    case Primitive::Lines:
+      return GL_LINES;
+    case Primitive::Points:
+      return GL_POINTS;
   }
   return GL_TRIANGLES;
 }
@@ -74,7 +89,9 @@ void Buffer::update(size_t offset, std::span<const uint8_t> data) {
                   static_cast<GLsizeiptr>(data.size()), data.data());
 }
 
-void Buffer::bind() const { glBindBuffer(bufferTarget(kind_), handle_.id()); }
+void Buffer::bind() const {
+  glBindBuffer(bufferTarget(kind_), handle_.id());
+}
 
 // --- VertexArray --------------------------------------------------------------------------
 
@@ -86,8 +103,8 @@ VertexArray VertexArray::create() {
   return v;
 }
 
-void VertexArray::setAttribute(int location, const Buffer& buffer, int components,
-                               AttribType type, bool normalized, int stride, size_t offset) {
+void VertexArray::setAttribute(int location, const Buffer& buffer, int components, AttribType type,
+                               bool normalized, int stride, size_t offset) {
   glBindVertexArray(handle_.id());
   glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
   glEnableVertexAttribArray(static_cast<GLuint>(location));
@@ -138,13 +155,24 @@ Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat for
   r.format_ = format;
   GLenum internal = GL_DEPTH_COMPONENT24;
   switch (format) {
-    case PixelFormat::Depth24: internal = GL_DEPTH_COMPONENT24; break;
-    case PixelFormat::Depth32F: internal = GL_DEPTH_COMPONENT32F; break;
-    case PixelFormat::RGBA8: internal = GL_RGBA8; break;
-    case PixelFormat::RGBA16F: internal = GL_RGBA16F; break;
-    case PixelFormat::RGBA32F: internal = GL_RGBA32F; break;
-    default: return makeError(std::string("renderbuffers of format ") + formatName(format) +
-                              " are not supported");
+    case PixelFormat::Depth24:
+      internal = GL_DEPTH_COMPONENT24;
+      break;
+    case PixelFormat::Depth32F:
+      internal = GL_DEPTH_COMPONENT32F;
+      break;
+    case PixelFormat::RGBA8:
+      internal = GL_RGBA8;
+      break;
+    case PixelFormat::RGBA16F:
+      internal = GL_RGBA16F;
+      break;
+    case PixelFormat::RGBA32F:
+      internal = GL_RGBA32F;
+      break;
+    default:
+      return makeError(std::string("renderbuffers of format ") + formatName(format) +
+                       " are not supported");
   }
   glBindRenderbuffer(GL_RENDERBUFFER, id);
   glRenderbufferStorage(GL_RENDERBUFFER, internal, width, height);
@@ -165,8 +193,8 @@ Framebuffer Framebuffer::create() {
 
 void Framebuffer::attachColor(int index, const Texture2D& texture, int level) {
   bind();
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + index, GL_TEXTURE_2D,
-                         texture.id(), level);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + index, GL_TEXTURE_2D, texture.id(),
+                         level);
 }
 
 void Framebuffer::attachColor(int index, const TextureCube& cube, int face, int level) {
@@ -206,8 +234,12 @@ Status Framebuffer::checkComplete() const {
   return makeError(std::string("framebuffer incomplete: ") + framebufferStatusName(status));
 }
 
-void Framebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, handle_.id()); }
-void Framebuffer::bindDefault() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, handle_.id());
+}
+void Framebuffer::bindDefault() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
 std::vector<float> Framebuffer::readRgbaFloat(int index, int x, int y, int width,
                                               int height) const {
@@ -218,8 +250,7 @@ std::vector<float> Framebuffer::readRgbaFloat(int index, int x, int y, int width
   return out;
 }
 
-std::vector<uint8_t> Framebuffer::readRgba8(int index, int x, int y, int width,
-                                            int height) const {
+std::vector<uint8_t> Framebuffer::readRgba8(int index, int x, int y, int width, int height) const {
   std::vector<uint8_t> out(static_cast<size_t>(width) * height * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, handle_.id());
   glReadBuffer(GL_COLOR_ATTACHMENT0 + index);
@@ -238,8 +269,12 @@ std::optional<TimerQuery> TimerQuery::create(bool supported) {
   return q;
 }
 
-void TimerQuery::begin() { glBeginQuery(GL_TIME_ELAPSED_EXT, handle_.id()); }
-void TimerQuery::end() { glEndQuery(GL_TIME_ELAPSED_EXT); }
+void TimerQuery::begin() {
+  glBeginQuery(GL_TIME_ELAPSED_EXT, handle_.id());
+}
+void TimerQuery::end() {
+  glEndQuery(GL_TIME_ELAPSED_EXT);
+}
 
 std::optional<uint64_t> TimerQuery::resultNs() const {
   GLuint available = 0;
@@ -262,17 +297,28 @@ void apply(const PipelineState& s) {
     glEnable(GL_DEPTH_TEST);
     GLenum f = GL_LESS;
     switch (s.depthTest) {
-      case DepthTest::Less: f = GL_LESS; break;
-      case DepthTest::LessEqual: f = GL_LEQUAL; break;
-      case DepthTest::Equal: f = GL_EQUAL; break;
-      case DepthTest::Always: f = GL_ALWAYS; break;
-      case DepthTest::Off: break;
+      case DepthTest::Less:
+        f = GL_LESS;
+        break;
+      case DepthTest::LessEqual:
+        f = GL_LEQUAL;
+        break;
+      case DepthTest::Equal:
+        f = GL_EQUAL;
+        break;
+      case DepthTest::Always:
+        f = GL_ALWAYS;
+        break;
+      case DepthTest::Off:
+        break;
     }
     glDepthFunc(f);
   }
   glDepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
   switch (s.blend) {
-    case Blend::None: glDisable(GL_BLEND); break;
+    case Blend::None:
+      glDisable(GL_BLEND);
+      break;
     case Blend::Additive:
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);
@@ -290,7 +336,9 @@ void apply(const PipelineState& s) {
       break;
   }
   switch (s.cull) {
-    case Cull::None: glDisable(GL_CULL_FACE); break;
+    case Cull::None:
+      glDisable(GL_CULL_FACE);
+      break;
     case Cull::Back:
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
@@ -311,7 +359,9 @@ void apply(const PipelineState& s) {
   }
 }
 
-void setViewport(int x, int y, int width, int height) { glViewport(x, y, width, height); }
+void setViewport(int x, int y, int width, int height) {
+  glViewport(x, y, width, height);
+}
 
 void clearColor(float r, float g, float b, float a) {
   glClearColor(r, g, b, a);
@@ -329,7 +379,11 @@ void clearBufferFloat(int index, float r, float g, float b, float a) {
   glClearBufferfv(GL_COLOR, index, v);
 }
 
-void finish() { glFinish(); }
-void flush() { glFlush(); }
+void finish() {
+  glFinish();
+}
+void flush() {
+  glFlush();
+}
 
 }  // namespace penumbra::gl

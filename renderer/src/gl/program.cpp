@@ -35,8 +35,8 @@ size_t parseLocation(const std::string& s, size_t pos, int& src, int& line) {
 }
 
 Result<GLuint> compile(const ShaderSource& src) {
-  GLuint shader = glCreateShader(src.stage == ShaderStage::Vertex ? GL_VERTEX_SHADER
-                                                                   : GL_FRAGMENT_SHADER);
+  GLuint shader =
+      glCreateShader(src.stage == ShaderStage::Vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
   const char* text = src.text.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
@@ -123,7 +123,9 @@ Result<Program> Program::build(const ShaderSource& vertex, const ShaderSource& f
   return p;
 }
 
-void Program::use() const { glUseProgram(handle_.id()); }
+void Program::use() const {
+  glUseProgram(handle_.id());
+}
 
 GLint Program::location(std::string_view name) const {
   auto it = locations_.find(std::string(name));
@@ -134,8 +136,12 @@ GLint Program::location(std::string_view name) const {
   return loc;
 }
 
-void Program::set(std::string_view n, int v) const { glUniform1i(location(n), v); }
-void Program::set(std::string_view n, float v) const { glUniform1f(location(n), v); }
+void Program::set(std::string_view n, int v) const {
+  glUniform1i(location(n), v);
+}
+void Program::set(std::string_view n, float v) const {
+  glUniform1f(location(n), v);
+}
 void Program::set(std::string_view n, const glm::vec2& v) const {
   glUniform2fv(location(n), 1, glm::value_ptr(v));
 }
@@ -196,8 +202,7 @@ Status ShaderLibrary::expand(std::string_view file, std::string& out,
       size_t q1 = line.find('"', p);
       size_t q2 = q1 == std::string::npos ? q1 : line.find('"', q1 + 1);
       if (q2 == std::string::npos) {
-        return makeError(std::string(file) + ":" + std::to_string(lineNo) +
-                         ": malformed #include");
+        return makeError(std::string(file) + ":" + std::to_string(lineNo) + ": malformed #include");
       }
       PN_TRY(expand(line.substr(q1 + 1, q2 - q1 - 1), out, files, stack));
       out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
@@ -226,8 +231,8 @@ Result<ShaderSource> ShaderLibrary::compose(std::string_view file, ShaderStage s
   return src;
 }
 
-Result<Program*> ShaderLibrary::program(std::string_view vertexFile,
-                                        std::string_view fragmentFile, const Defines& defines) {
+Result<Program*> ShaderLibrary::program(std::string_view vertexFile, std::string_view fragmentFile,
+                                        const Defines& defines) {
   std::string key = std::string(vertexFile) + "|" + std::string(fragmentFile);
   for (const auto& [k, v] : defines) key += "|" + k + "=" + v;
   if (auto it = cache_.find(key); it != cache_.end()) return it->second.get();

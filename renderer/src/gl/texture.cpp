@@ -17,44 +17,62 @@ struct FormatInfo {
 
 FormatInfo info(PixelFormat f) {
   switch (f) {
-    case PixelFormat::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
-    case PixelFormat::SRGB8_ALPHA8: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
-    case PixelFormat::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
-    case PixelFormat::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16};
-    case PixelFormat::RGB16F: return {GL_RGB16F, GL_RGB, GL_HALF_FLOAT, 6};
-    case PixelFormat::RG16F: return {GL_RG16F, GL_RG, GL_HALF_FLOAT, 4};
-    case PixelFormat::R32F: return {GL_R32F, GL_RED, GL_FLOAT, 4};
+    case PixelFormat::RGBA8:
+      return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case PixelFormat::SRGB8_ALPHA8:
+      return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case PixelFormat::RGBA16F:
+      return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
+    case PixelFormat::RGBA32F:
+      return {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16};
+    case PixelFormat::RGB16F:
+      return {GL_RGB16F, GL_RGB, GL_HALF_FLOAT, 6};
+    case PixelFormat::RG16F:
+      return {GL_RG16F, GL_RG, GL_HALF_FLOAT, 4};
+    case PixelFormat::R32F:
+      return {GL_R32F, GL_RED, GL_FLOAT, 4};
     case PixelFormat::Depth24:
       return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4};
-    case PixelFormat::Depth32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4};
+    case PixelFormat::Depth32F:
+      return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4};
   }
   return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
 }
 
 GLenum uploadType(DataType t, PixelFormat f) {
   switch (t) {
-    case DataType::UInt8: return GL_UNSIGNED_BYTE;
-    case DataType::Float: return GL_FLOAT;
-    case DataType::HalfFloat: return GL_HALF_FLOAT;
+    case DataType::UInt8:
+      return GL_UNSIGNED_BYTE;
+    case DataType::Float:
+      return GL_FLOAT;
+    case DataType::HalfFloat:
+      return GL_HALF_FLOAT;
   }
   return info(f).type;
 }
 
 GLint glFilter(Filter f) {
   switch (f) {
-    case Filter::Nearest: return GL_NEAREST;
-    case Filter::Linear: return GL_LINEAR;
-    case Filter::LinearMipLinear: return GL_LINEAR_MIPMAP_LINEAR;
-    case Filter::NearestMipNearest: return GL_NEAREST_MIPMAP_NEAREST;
+    case Filter::Nearest:
+      return GL_NEAREST;
+    case Filter::Linear:
+      return GL_LINEAR;
+    case Filter::LinearMipLinear:
+      return GL_LINEAR_MIPMAP_LINEAR;
+    case Filter::NearestMipNearest:
+      return GL_NEAREST_MIPMAP_NEAREST;
   }
   return GL_LINEAR;
 }
 
 GLint glWrap(Wrap w) {
   switch (w) {
-    case Wrap::Repeat: return GL_REPEAT;
-    case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
-    case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+    case Wrap::Repeat:
+      return GL_REPEAT;
+    case Wrap::ClampToEdge:
+      return GL_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat:
+      return GL_MIRRORED_REPEAT;
   }
   return GL_CLAMP_TO_EDGE;
 }
@@ -95,21 +113,34 @@ Status validate(const TextureDesc& d, bool cube) {
 
 const char* formatName(PixelFormat format) {
   switch (format) {
-    case PixelFormat::RGBA8: return "RGBA8";
-    case PixelFormat::SRGB8_ALPHA8: return "SRGB8_ALPHA8";
-    case PixelFormat::RGBA16F: return "RGBA16F";
-    case PixelFormat::RGBA32F: return "RGBA32F";
-    case PixelFormat::RGB16F: return "RGB16F";
-    case PixelFormat::RG16F: return "RG16F";
-    case PixelFormat::R32F: return "R32F";
-    case PixelFormat::Depth24: return "DEPTH_COMPONENT24";
-    case PixelFormat::Depth32F: return "DEPTH_COMPONENT32F";
+    case PixelFormat::RGBA8:
+      return "RGBA8";
+    case PixelFormat::SRGB8_ALPHA8:
+      return "SRGB8_ALPHA8";
+    case PixelFormat::RGBA16F:
+      return "RGBA16F";
+    case PixelFormat::RGBA32F:
+      return "RGBA32F";
+    case PixelFormat::RGB16F:
+      return "RGB16F";
+    case PixelFormat::RG16F:
+      return "RG16F";
+    case PixelFormat::R32F:
+      return "R32F";
+    case PixelFormat::Depth24:
+      return "DEPTH_COMPONENT24";
+    case PixelFormat::Depth32F:
+      return "DEPTH_COMPONENT32F";
   }
   return "?";
 }
 
-int bytesPerPixel(PixelFormat format) { return info(format).bytes; }
-bool isDepthFormat(PixelFormat f) { return f == PixelFormat::Depth24 || f == PixelFormat::Depth32F; }
+int bytesPerPixel(PixelFormat format) {
+  return info(format).bytes;
+}
+bool isDepthFormat(PixelFormat f) {
+  return f == PixelFormat::Depth24 || f == PixelFormat::Depth32F;
+}
 
 int fullMipCount(int width, int height) {
   int n = 1;

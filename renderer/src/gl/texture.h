@@ -10,15 +10,15 @@
 namespace penumbra::gl {
 
 enum class PixelFormat {
-  RGBA8,        // UNORM, colour textures stored linear
-  SRGB8_ALPHA8, // colour textures in sRGB (base colour, emissive)
+  RGBA8,         // UNORM, colour textures stored linear
+  SRGB8_ALPHA8,  // colour textures in sRGB (base colour, emissive)
   RGBA16F,
   RGBA32F,
-  RGB16F,       // filterable HDR textures (environment)
+  RGB16F,  // filterable HDR textures (environment)
   RG16F,
   R32F,
-  Depth24,      // DEPTH_COMPONENT24
-  Depth32F,     // DEPTH_COMPONENT32F
+  Depth24,   // DEPTH_COMPONENT24
+  Depth32F,  // DEPTH_COMPONENT32F
 };
 
 enum class DataType { UInt8, Float, HalfFloat };

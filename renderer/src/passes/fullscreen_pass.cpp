@@ -21,6 +21,8 @@ const gl::Program& FullscreenPass::begin(bool depthTest) const {
   return *program_;
 }
 
-void FullscreenPass::draw() const { vao_.draw(gl::Primitive::Triangles, 3); }
+void FullscreenPass::draw() const {
+  vao_.draw(gl::Primitive::Triangles, 3);
+}
 
 }  // namespace penumbra::passes

@@ -4,11 +4,11 @@ namespace penumbra::passes {
 namespace {
 
 Result<ColorTarget> makeColor(int w, int h, gl::PixelFormat format, const gl::Renderbuffer* depth) {
-  auto tex = gl::Texture2D::create({.width = w,
-                                    .height = h,
-                                    .format = format,
-                                    .sampler = {.minFilter = gl::Filter::Nearest,
-                                                .magFilter = gl::Filter::Nearest}});
+  auto tex = gl::Texture2D::create(
+      {.width = w,
+       .height = h,
+       .format = format,
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}});
   if (!tex) return tex.error();
   ColorTarget t{std::move(*tex), gl::Framebuffer::create()};
   t.framebuffer.attachColor(0, t.color);

@@ -19,13 +19,13 @@ struct RenderTargets {
   int width = 0;
   int height = 0;
   gl::PixelFormat format = gl::PixelFormat::RGBA32F;
-  ColorTarget frame;      // this intermediate frame's radiance, with depth
+  ColorTarget frame;  // this intermediate frame's radiance, with depth
   gl::Renderbuffer frameDepth;
   std::array<ColorTarget, 2> accumulation;
-  int current = 0;        // accumulation[current] holds the running mean
-  ColorTarget prepass;    // view normal + linear depth
+  int current = 0;      // accumulation[current] holds the running mean
+  ColorTarget prepass;  // view normal + linear depth
   gl::Renderbuffer prepassDepth;
-  ColorTarget display;    // RGBA8, display-encoded
+  ColorTarget display;  // RGBA8, display-encoded
 
   static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
                                       gl::PixelFormat prepassFormat);

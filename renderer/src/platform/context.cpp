@@ -12,11 +12,16 @@ namespace penumbra {
 
 const char* backendName(GlBackend backend) {
   switch (backend) {
-    case GlBackend::Auto: return "auto";
-    case GlBackend::EglSurfaceless: return "egl";
-    case GlBackend::EglDevice: return "egl-device";
-    case GlBackend::OSMesa: return "osmesa";
-    case GlBackend::WebGL2: return "webgl2";
+    case GlBackend::Auto:
+      return "auto";
+    case GlBackend::EglSurfaceless:
+      return "egl";
+    case GlBackend::EglDevice:
+      return "egl-device";
+    case GlBackend::OSMesa:
+      return "osmesa";
+    case GlBackend::WebGL2:
+      return "webgl2";
   }
   return "unknown";
 }
@@ -38,11 +43,16 @@ namespace {
 
 Result<std::unique_ptr<GlContext>> createOne(GlBackend backend, const ContextOptions& options) {
   switch (backend) {
-    case GlBackend::EglSurfaceless: return platform::createEglContext(false);
-    case GlBackend::EglDevice: return platform::createEglContext(true);
-    case GlBackend::OSMesa: return platform::createOsMesaContext();
-    case GlBackend::WebGL2: return platform::createWebGlContext(options);
-    case GlBackend::Auto: break;
+    case GlBackend::EglSurfaceless:
+      return platform::createEglContext(false);
+    case GlBackend::EglDevice:
+      return platform::createEglContext(true);
+    case GlBackend::OSMesa:
+      return platform::createOsMesaContext();
+    case GlBackend::WebGL2:
+      return platform::createWebGlContext(options);
+    case GlBackend::Auto:
+      break;
   }
   return makeError("no backend chosen");
 }

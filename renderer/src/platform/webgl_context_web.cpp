@@ -31,7 +31,9 @@ class WebGlContext final : public GlContext {
 
 }  // namespace
 
-int loadGlFunctions(GetProcFn) { return 30000; }
+int loadGlFunctions(GetProcFn) {
+  return 30000;
+}
 
 std::string currentGlDescription() {
   auto str = [](GLenum name) {
@@ -64,9 +66,9 @@ Result<std::unique_ptr<GlContext>> createWebGlContext(const ContextOptions& opti
   }
   auto context = std::make_unique<WebGlContext>(handle);
   if (auto st = context->makeCurrent(); !st) return st.error();
-  for (const char* ext : {"EXT_color_buffer_float", "EXT_color_buffer_half_float",
-                          "OES_texture_float_linear", "EXT_float_blend",
-                          "EXT_disjoint_timer_query_webgl2"}) {
+  for (const char* ext :
+       {"EXT_color_buffer_float", "EXT_color_buffer_half_float", "OES_texture_float_linear",
+        "EXT_float_blend", "EXT_disjoint_timer_query_webgl2"}) {
     emscripten_webgl_enable_extension(handle, ext);
   }
   applyCommonState(false);

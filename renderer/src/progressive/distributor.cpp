@@ -42,10 +42,9 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
     LightSample sample;
   };
   std::vector<Pending> all;
-  const int perLight = s.lightSamples > 0
-                           ? s.lightSamples
-                           : automaticLightSamples(m, s.directDelay,
-                                                   static_cast<int>(lights.size()));
+  const int perLight =
+      s.lightSamples > 0 ? s.lightSamples
+                         : automaticLightSamples(m, s.directDelay, static_cast<int>(lights.size()));
   for (size_t i = 0; i < lights.size(); ++i) {
     const int n = m == 1 ? 1 : perLight;
     auto pts = lightSamplePoints(n, lights[i].shape, lights[i].aspect,

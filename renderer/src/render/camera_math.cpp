@@ -18,9 +18,8 @@ CameraMatrices cameraMatrices(const Camera& camera, int width, int height, glm::
   m.view = glm::inverse(world);
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   const float znear = camera.znear > 0.0f ? camera.znear : 0.01f;
-  m.projection = camera.zfar > znear
-                     ? glm::perspective(camera.yfov, aspect, znear, camera.zfar)
-                     : glm::infinitePerspective(camera.yfov, aspect, znear);
+  m.projection = camera.zfar > znear ? glm::perspective(camera.yfov, aspect, znear, camera.zfar)
+                                     : glm::infinitePerspective(camera.yfov, aspect, znear);
   // A clip-space offset of 2 * pixels / size moves the image by `pixels`.
   m.projection[2][0] += 2.0f * jitter.x / static_cast<float>(width);
   m.projection[2][1] += 2.0f * jitter.y / static_cast<float>(height);

@@ -11,9 +11,9 @@
 #include "gl/capabilities.h"
 #include "gl/errors.h"
 #include "passes/fullscreen_pass.h"
-#include "penumbra/environment.h"
 #include "passes/shadow_pass.h"
 #include "passes/targets.h"
+#include "penumbra/environment.h"
 #include "progressive/controller.h"
 #include "render/camera_math.h"
 #include "scene/gpu_environment.h"
@@ -70,9 +70,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     auto pre = library.program("mesh.vert", "prepass.frag");
     if (!pre) return pre.error();
     prepassProgram = *pre;
-    for (auto [slot, file] : {std::pair{&accumulate, "accumulate.frag"},
-                              std::pair{&tonemap, "tonemap.frag"},
-                              std::pair{&background, "background.frag"}}) {
+    for (auto [slot, file] :
+         {std::pair{&accumulate, "accumulate.frag"}, std::pair{&tonemap, "tonemap.frag"},
+          std::pair{&background, "background.frag"}}) {
       auto p = passes::FullscreenPass::create(library, file);
       if (!p) return p.error();
       slot->emplace(std::move(*p));
@@ -91,8 +91,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   Status applySettings(const RenderSettings& s, bool force) {
     PN_TRY(validate(s));
-    const bool resize = force || !targets || s.width != settings.width ||
-                        s.height != settings.height;
+    const bool resize =
+        force || !targets || s.width != settings.width || s.height != settings.height;
     const bool shadowResize =
         force || !shadows || s.progressive.shadowMapSize != settings.progressive.shadowMapSize;
     const bool restartNeeded = force || s.environmentIntensity != settings.environmentIntensity ||
@@ -102,9 +102,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     settings = s;
     if (resize) {
       targets.reset();
-      auto t = passes::RenderTargets::create(s.width, s.height, caps.accumulationFormat,
-                                             caps.colorBufferFloat ? gl::PixelFormat::RGBA32F
-                                                                   : caps.accumulationFormat);
+      auto t = passes::RenderTargets::create(
+          s.width, s.height, caps.accumulationFormat,
+          caps.colorBufferFloat ? gl::PixelFormat::RGBA32F : caps.accumulationFormat);
       if (!t) return t.error();
       targets.emplace(std::move(*t));
       prepassValid = false;
@@ -233,8 +233,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (s.light < 0 || s.light >= static_cast<int>(lights.size())) continue;
       (lights[static_cast<size_t>(s.light)].isArea() ? area : punctual).push_back(&s);
     }
-    const int batches = std::max(1, static_cast<int>((area.size() + kMaxAreaPerBatch - 1) /
-                                                     kMaxAreaPerBatch));
+    const int batches =
+        std::max(1, static_cast<int>((area.size() + kMaxAreaPerBatch - 1) / kMaxAreaPerBatch));
     for (int b = 0; b < batches; ++b) {
       std::vector<passes::ShadowView> views;
       std::vector<const LightSample*> batch;
@@ -281,10 +281,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   Status drawLighting(const FramePlan& plan, const CameraMatrices& cm, const CameraMatrices& plain,
-                    const glm::mat4& viewProj, bool first,
-                    const std::vector<const LightSample*>& batch,
-                    const std::vector<passes::ShadowView>& views,
-                    const std::vector<const LightSample*>& punctual) {
+                      const glm::mat4& viewProj, bool first,
+                      const std::vector<const LightSample*>& batch,
+                      const std::vector<passes::ShadowView>& views,
+                      const std::vector<const LightSample*>& punctual) {
     (void)plain;
     targets->frame.framebuffer.bind();
     gl::setViewport(0, 0, targets->width, targets->height);
@@ -294,8 +294,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       gl::clearDepth(1.0f);
       if (settings.showBackground) {
         const gl::Program& bg = background->begin();
-        environment->bind(bg, kUnitEnvCube, kUnitLut, settings.environmentIntensity,
-                          envRotation());
+        environment->bind(bg, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
         bg.set("uInvViewProj", glm::inverse(viewProj));
         bg.set("uBackgroundBlur", settings.backgroundBlur);
         background->draw();
@@ -351,7 +350,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     for (const LightSample* s : punctual) {
       if (ppos.size() >= kMaxPunctual) break;
       const Light& l = lights[static_cast<size_t>(s->light)];
-      const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
+      const float type = l.type == LightType::Point  ? 0.0f
+                         : l.type == LightType::Spot ? 1.0f
+                                                     : 2.0f;
       ppos.emplace_back(l.position, type);
       pdir.emplace_back(l.direction, l.range);
       pcol.push_back(l.color * l.intensity * s->weight);
@@ -384,8 +385,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& a, const DrawItem& b) {
         return glm::distance(a.center, cm.position) > glm::distance(b.center, cm.position);
       });
-      drawList(p, sorted, true,
-               {.depthWrite = false, .blend = gl::Blend::Alpha});
+      drawList(p, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
     }
     return {};
   }
@@ -429,14 +429,30 @@ Status Renderer::setSettings(const RenderSettings& settings) {
   return impl_->applySettings(settings, false);
 }
 
-Result<int> Renderer::step() { return impl_->controller.step(*impl_); }
-void Renderer::restart() { impl_->controller.invalidate(); }
-bool Renderer::converged() const { return impl_->controller.converged(); }
-int Renderer::framesDone() const { return impl_->controller.framesDone(); }
-int Renderer::totalFrames() const { return impl_->controller.totalFrames(); }
-const FrameStats& Renderer::lastFrame() const { return impl_->stats; }
-const RenderSettings& Renderer::settings() const { return impl_->settings; }
-std::string Renderer::capabilityReport() const { return impl_->caps.report(); }
+Result<int> Renderer::step() {
+  return impl_->controller.step(*impl_);
+}
+void Renderer::restart() {
+  impl_->controller.invalidate();
+}
+bool Renderer::converged() const {
+  return impl_->controller.converged();
+}
+int Renderer::framesDone() const {
+  return impl_->controller.framesDone();
+}
+int Renderer::totalFrames() const {
+  return impl_->controller.totalFrames();
+}
+const FrameStats& Renderer::lastFrame() const {
+  return impl_->stats;
+}
+const RenderSettings& Renderer::settings() const {
+  return impl_->settings;
+}
+std::string Renderer::capabilityReport() const {
+  return impl_->caps.report();
+}
 
 Result<Image> Renderer::readRadiance() {
   auto& t = *impl_->targets;

@@ -9,10 +9,14 @@ namespace penumbra {
 
 const char* toneMapperName(ToneMapper t) {
   switch (t) {
-    case ToneMapper::PbrNeutral: return "pbr-neutral";
-    case ToneMapper::AcesFitted: return "aces";
-    case ToneMapper::Reinhard: return "reinhard";
-    case ToneMapper::None: return "none";
+    case ToneMapper::PbrNeutral:
+      return "pbr-neutral";
+    case ToneMapper::AcesFitted:
+      return "aces";
+    case ToneMapper::Reinhard:
+      return "reinhard";
+    case ToneMapper::None:
+      return "none";
   }
   return "?";
 }

@@ -15,8 +15,7 @@ bool isPackedEnvironmentFile(const std::string& path) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
   const size_t end = head.find("\n\n");
-  return head.rfind("#?", 0) == 0 &&
-         head.find(std::string("\n") + kPackedHeaderKey + "=") < end;
+  return head.rfind("#?", 0) == 0 && head.find(std::string("\n") + kPackedHeaderKey + "=") < end;
 }
 
 Result<PackedEnvironment> loadEnvironment(const std::string& path,

@@ -22,18 +22,18 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
   const int mips = env.specular.mipCount();
   if (mips < 1 || env.specular.size < 1) return makeError("environment has no cube map");
   auto ge = std::make_unique<GpuEnvironment>();
-  auto cube = gl::TextureCube::create({.width = env.specular.size,
-                                       .format = gl::PixelFormat::RGB16F,
-                                       .levels = mips,
-                                       .sampler = {.minFilter = gl::Filter::LinearMipLinear,
-                                                   .magFilter = gl::Filter::Linear}});
+  auto cube = gl::TextureCube::create(
+      {.width = env.specular.size,
+       .format = gl::PixelFormat::RGB16F,
+       .levels = mips,
+       .sampler = {.minFilter = gl::Filter::LinearMipLinear, .magFilter = gl::Filter::Linear}});
   if (!cube) return makeError("environment cube: " + cube.message());
   for (int m = 0; m < mips; ++m) {
     for (int f = 0; f < ibl::kFaceCount; ++f) {
       const Image& img = env.specular.face(m, f);
       if (img.channels != 3 || img.width != env.specular.faceSize(m)) {
-        return makeError("environment face " + std::to_string(f) + " of mip " +
-                         std::to_string(m) + " has the wrong size or channels");
+        return makeError("environment face " + std::to_string(f) + " of mip " + std::to_string(m) +
+                         " has the wrong size or channels");
       }
       cube->upload(f, m, img.pixels.data(), gl::DataType::Float);
     }
@@ -53,7 +53,8 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
   // Pre-convolve with the clamped cosine: E(n) = sum A_l L_lm Y_lm(n).
   const float a[9] = {3.14159265f, 2.09439510f, 2.09439510f, 2.09439510f, 0.78539816f,
                       0.78539816f, 0.78539816f, 0.78539816f, 0.78539816f};
-  for (int i = 0; i < 9; ++i) ge->irradianceSh_[static_cast<size_t>(i)] = env.sh.c[static_cast<size_t>(i)] * a[i];
+  for (int i = 0; i < 9; ++i)
+    ge->irradianceSh_[static_cast<size_t>(i)] = env.sh.c[static_cast<size_t>(i)] * a[i];
   return ge;
 }
 

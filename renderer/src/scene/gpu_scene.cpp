@@ -19,18 +19,25 @@ Status addAttribute(GpuPrimitive& p, int location, const std::vector<T>& data, i
 
 gl::Filter minFilter(int f) {
   switch (f) {
-    case 9728: return gl::Filter::Nearest;                  // NEAREST
-    case 9729: return gl::Filter::Linear;                   // LINEAR
-    case 9984: return gl::Filter::NearestMipNearest;        // NEAREST_MIPMAP_NEAREST
-    default: return gl::Filter::LinearMipLinear;            // the mipmapped ones
+    case 9728:
+      return gl::Filter::Nearest;  // NEAREST
+    case 9729:
+      return gl::Filter::Linear;  // LINEAR
+    case 9984:
+      return gl::Filter::NearestMipNearest;  // NEAREST_MIPMAP_NEAREST
+    default:
+      return gl::Filter::LinearMipLinear;  // the mipmapped ones
   }
 }
 
 gl::Wrap wrap(int w) {
   switch (w) {
-    case 33071: return gl::Wrap::ClampToEdge;
-    case 33648: return gl::Wrap::MirroredRepeat;
-    default: return gl::Wrap::Repeat;
+    case 33071:
+      return gl::Wrap::ClampToEdge;
+    case 33648:
+      return gl::Wrap::MirroredRepeat;
+    default:
+      return gl::Wrap::Repeat;
   }
 }
 
@@ -88,8 +95,8 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   for (const Material& m : scene.materials) {
     GpuMaterial gm;
     gm.source = m;
-    const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
-                                 &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
+    const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                 &m.occlusionTexture, &m.emissiveTexture};
     for (int slot = 0; slot < 5; ++slot) {
       if (!refs[slot]->valid()) continue;
       const bool srgb = slot == 0 || slot == 4;  // base colour and emissive are sRGB
@@ -109,8 +116,8 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
     for (GpuPrimitive* p : gs->meshes_[static_cast<size_t>(inst.mesh)]) {
       DrawItem item;
       item.primitive = p;
-      item.material = p->material >= 0 && p->material < defaultMaterial ? p->material
-                                                                        : defaultMaterial;
+      item.material =
+          p->material >= 0 && p->material < defaultMaterial ? p->material : defaultMaterial;
       item.model = inst.world;
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
@@ -125,8 +132,8 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
         gs->bounds_.extend(wb);
         item.center = wb.center();
       }
-      const bool blend = gs->materials_[static_cast<size_t>(item.material)].source.alphaMode ==
-                         AlphaMode::Blend;
+      const bool blend =
+          gs->materials_[static_cast<size_t>(item.material)].source.alphaMode == AlphaMode::Blend;
       (blend ? gs->blended_ : gs->opaque_).push_back(item);
     }
   }
@@ -179,10 +186,10 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uOcclusionStrength", m.occlusionStrength);
   program.set("uAlphaMode", static_cast<int>(m.alphaMode));
   program.set("uAlphaCutoff", m.alphaCutoff);
-  const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
-                               &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
-  static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex",
-                                           "uNormalTex", "uOcclusionTex", "uEmissiveTex"};
+  const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                               &m.occlusionTexture, &m.emissiveTexture};
+  static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",
+                                           "uOcclusionTex", "uEmissiveTex"};
   int textureMask = 0, texCoordMask = 0;
   glm::mat3 transforms[5];
   for (int slot = 0; slot < 5; ++slot) {
