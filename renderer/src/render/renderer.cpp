@@ -242,8 +242,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
            i < area.size() && batch.size() < kMaxAreaPerBatch; ++i) {
         batch.push_back(area[i]);
       }
-      std::stable_sort(batch.begin(), batch.end(), [](const LightSample* a, const LightSample* b) {
-        return a->light < b->light;
+      std::stable_sort(batch.begin(), batch.end(), [](const LightSample* x, const LightSample* y) {
+        return x->light < y->light;
       });
       for (size_t i = 0; i < batch.size(); ++i) {
         const Light& l = lights[static_cast<size_t>(batch[i]->light)];

@@ -1,0 +1,207 @@
+// loadGltf / loadGltfFromMemory: container -> JSON -> extension checks -> buffers -> node
+// hierarchy (flattened into instances, with cycle and shared-node detection) -> meshes ->
+// materials and images. Nothing throws out of here: the stages return Results, and anything a
+// library throws (nlohmann, bad_alloc) is caught at this boundary.
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <string_view>
+
+#include "scene/gltf_document.h"
+
+namespace penumbra {
+namespace {
+
+using gltf::Document;
+using gltf::LoadContext;
+
+constexpr std::array<std::string_view, 7> kSupportedExtensions = {
+    "KHR_texture_transform",   "KHR_materials_emissive_strength", "KHR_lights_punctual",
+    "EXT_lights_area",         "KHR_mesh_quantization",           "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+};
+
+bool isSupported(const std::string& ext) {
+  return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), ext) !=
+         kSupportedExtensions.end();
+}
+
+Status checkExtensions(const Document& doc, LoadContext& ctx) {
+  for (const std::string& ext : doc.extensionsRequired) {
+    if (!isSupported(ext)) return ctx.error("requires unsupported extension " + ext);
+    if ((ext == "KHR_draco_mesh_compression" && !gltf::hasDraco()) ||
+        (ext == "EXT_meshopt_compression" && !gltf::hasMeshopt())) {
+      return ctx.error("requires " + ext + ", which is not supported in the web build");
+    }
+  }
+  for (const std::string& ext : doc.extensionsUsed) {
+    if (isSupported(ext)) continue;
+    if (ext.rfind("KHR_materials_", 0) == 0) {
+      ctx.warn("uses " + ext +
+               ", which is ignored (only the metallic-roughness model and "
+               "KHR_materials_emissive_strength are supported)");
+    } else {
+      ctx.warn("uses unsupported extension " + ext + " (ignored)");
+    }
+  }
+  return {};
+}
+
+// Every node has at most one parent and the parent links have no cycle. Iterative, so a deep
+// or hostile hierarchy cannot overflow the stack.
+Status checkNodeGraph(const Document& doc, std::vector<int>& parent, LoadContext& ctx) {
+  const size_t n = doc.nodes.size();
+  parent.assign(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    for (int c : doc.nodes[i].children) {
+      if (static_cast<size_t>(c) == i) {
+        return ctx.error("node " + std::to_string(i) + " lists itself as a child (cycle)");
+      }
+      if (parent[static_cast<size_t>(c)] >= 0) {
+        return ctx.error("node " + std::to_string(c) + " has more than one parent (nodes " +
+                         std::to_string(parent[static_cast<size_t>(c)]) + " and " +
+                         std::to_string(i) + ")");
+      }
+      parent[static_cast<size_t>(c)] = static_cast<int>(i);
+    }
+  }
+  enum : uint8_t { kUnknown, kOnPath, kRooted };
+  std::vector<uint8_t> state(n, kUnknown);
+  std::vector<int> path;
+  for (size_t i = 0; i < n; ++i) {
+    path.clear();
+    int v = static_cast<int>(i);
+    while (v >= 0 && state[static_cast<size_t>(v)] == kUnknown) {
+      state[static_cast<size_t>(v)] = kOnPath;
+      path.push_back(v);
+      v = parent[static_cast<size_t>(v)];
+    }
+    if (v >= 0 && state[static_cast<size_t>(v)] == kOnPath) {
+      return ctx.error("the node hierarchy has a cycle through node " + std::to_string(v));
+    }
+    for (int p : path) state[static_cast<size_t>(p)] = kRooted;
+  }
+  return {};
+}
+
+void extendBounds(Bounds& b, const Bounds& local, const glm::mat4& m) {
+  if (!local.valid()) return;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
+                      (corner & 2) ? local.max.y : local.min.y,
+                      (corner & 4) ? local.max.z : local.min.z);
+    b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+  }
+}
+
+Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
+                   const std::string& name, const LoadOptions& options) {
+  LoadContext ctx;
+  ctx.name = name.empty() ? std::string("<memory>") : name;
+  ctx.baseDir = baseDir;
+  ctx.options = options;
+  if (bytes.empty()) return ctx.error("empty file");
+
+  auto container = gltf::splitContainer(bytes, ctx);
+  if (!container.ok()) return container.error();
+  auto parsed = gltf::parseDocument(container->json, ctx);
+  if (!parsed.ok()) return parsed.error();
+  Document& doc = *parsed;
+  PN_TRY(checkExtensions(doc, ctx));
+  PN_TRY(gltf::loadBuffers(doc, container->bin, ctx));
+  std::vector<int> parent;
+  PN_TRY(checkNodeGraph(doc, parent, ctx));
+
+  std::vector<int> roots;
+  if (doc.scene >= 0 || !doc.scenes.empty()) {
+    roots = doc.scenes[static_cast<size_t>(std::max(doc.scene, 0))].nodes;
+  } else {
+    for (size_t i = 0; i < doc.nodes.size(); ++i) {
+      if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+    }
+    if (!roots.empty()) ctx.warn("the file has no scenes; showing every root node");
+  }
+
+  Scene scene;
+  std::vector<int> meshRemap(doc.meshes.size(), -1);
+  std::vector<int> meshOrder;
+  std::vector<bool> visited(doc.nodes.size(), false);
+  std::vector<std::pair<int, glm::mat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
+  while (!stack.empty()) {
+    const auto [index, parentWorld] = stack.back();
+    stack.pop_back();
+    if (visited[static_cast<size_t>(index)]) {
+      return ctx.error("node " + std::to_string(index) +
+                       " is reached twice from the scene (listed as a root and as a child, or "
+                       "twice as a root)");
+    }
+    visited[static_cast<size_t>(index)] = true;
+    const gltf::NodeDesc& node = doc.nodes[static_cast<size_t>(index)];
+    const glm::mat4 world = parentWorld * node.local;
+    if (node.mesh >= 0) {
+      int& m = meshRemap[static_cast<size_t>(node.mesh)];
+      if (m < 0) {
+        m = static_cast<int>(meshOrder.size());
+        meshOrder.push_back(node.mesh);
+      }
+      scene.instances.push_back(Instance{m, world, node.name});
+    }
+    if (node.camera >= 0) gltf::addNodeCamera(doc, node, world, scene, ctx);
+    gltf::addNodeLights(doc, node, world, scene, ctx);
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) {
+      stack.emplace_back(*c, world);
+    }
+  }
+
+  for (int m : meshOrder) {
+    auto mesh = gltf::convertMesh(doc, m, ctx);
+    if (!mesh.ok()) return mesh.error();
+    scene.meshes.push_back(std::move(mesh).value());
+  }
+  PN_TRY(gltf::convertMaterials(doc, scene, ctx));
+
+  for (const Instance& inst : scene.instances) {
+    for (const Primitive& p : scene.meshes[static_cast<size_t>(inst.mesh)].primitives) {
+      extendBounds(scene.bounds, p.bounds, inst.world);
+    }
+  }
+  if (scene.instances.empty()) {
+    ctx.warn("the scene has no meshes; only the environment will be visible");
+  }
+  scene.warnings = std::move(ctx.warnings);
+  return scene;
+}
+
+}  // namespace
+
+Result<Scene> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& baseDir,
+                                 const std::string& name, const LoadOptions& options) {
+  try {
+    return load(bytes, baseDir, name, options);
+  } catch (const std::bad_alloc&) {
+    return makeError(name + ": out of memory while loading");
+  } catch (const std::exception& e) {
+    return makeError(name + ": " + e.what());
+  }
+}
+
+Result<Scene> loadGltf(const std::string& path, const LoadOptions& options) {
+  try {
+    LoadContext ctx;
+    ctx.name = path;
+    ctx.options = options;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return ctx.error("no such file");
+    auto bytes =
+        gltf::readFileBytes(path, "the file", ctx,
+                            static_cast<uint64_t>(std::max<int64_t>(options.memoryBudgetBytes, 0)));
+    if (!bytes.ok()) return bytes.error();
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    return loadGltfFromMemory(*bytes, baseDir, path, options);
+  } catch (const std::exception& e) {
+    return makeError(path + ": " + e.what());
+  }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,207 @@
+// Materials, textures, samplers and images. Images are decoded to RGBA8 with stb_image (whose
+// implementation lives in image/stb_impl.cpp); a missing or undecodable image is a warning and
+// a 1x1 placeholder, so a scene with a broken texture still renders.
+#include <algorithm>
+#include <cstring>
+
+#include <stb_image.h>
+
+#include "scene/gltf_document.h"
+
+namespace penumbra::gltf {
+namespace {
+
+constexpr int kUsedOther = 1;
+constexpr int kUsedAsNormal = 2;
+
+ImageData placeholder(const std::string& name, bool normalMap) {
+  ImageData img;
+  img.name = name;
+  img.width = 1;
+  img.height = 1;
+  img.placeholder = true;
+  // A flat tangent-space normal keeps a broken normal map from bending the shading.
+  img.pixels = normalMap ? std::vector<uint8_t>{128, 128, 255, 255}
+                         : std::vector<uint8_t>{255, 255, 255, 255};
+  return img;
+}
+
+// Halves both sides (rounding up) with a box filter. Averaging sRGB-encoded texels is a small
+// error for colour textures, accepted here because this only runs for oversized inputs.
+void halve(ImageData& img) {
+  const int w = img.width, h = img.height;
+  const int nw = std::max(1, (w + 1) / 2), nh = std::max(1, (h + 1) / 2);
+  std::vector<uint8_t> out(static_cast<size_t>(nw) * static_cast<size_t>(nh) * 4);
+  for (int y = 0; y < nh; ++y) {
+    const int y0 = std::min(2 * y, h - 1), y1 = std::min(2 * y + 1, h - 1);
+    for (int x = 0; x < nw; ++x) {
+      const int x0 = std::min(2 * x, w - 1), x1 = std::min(2 * x + 1, w - 1);
+      for (int c = 0; c < 4; ++c) {
+        auto at = [&](int xx, int yy) {
+          return static_cast<int>(img.pixels[(static_cast<size_t>(yy) * static_cast<size_t>(w) +
+                                              static_cast<size_t>(xx)) *
+                                                 4 +
+                                             static_cast<size_t>(c)]);
+        };
+        const int sum = at(x0, y0) + at(x1, y0) + at(x0, y1) + at(x1, y1);
+        out[(static_cast<size_t>(y) * static_cast<size_t>(nw) + static_cast<size_t>(x)) * 4 +
+            static_cast<size_t>(c)] = static_cast<uint8_t>((sum + 2) / 4);
+      }
+    }
+  }
+  img.width = nw;
+  img.height = nh;
+  img.pixels = std::move(out);
+}
+
+// stb_image grows its IDAT buffer to whatever length a PNG chunk header claims before it
+// checks that the bytes exist, so a corrupt length would allocate gigabytes. Walk the chunks
+// first and refuse any that runs past the end of the data.
+bool pngChunksFit(const uint8_t* data, uint64_t size) {
+  static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size < 8 || std::memcmp(data, kSignature, 8) != 0) return true;  // not a PNG
+  uint64_t pos = 8;
+  while (pos + 12 <= size) {
+    const uint64_t length = (uint64_t{data[pos]} << 24) | (uint64_t{data[pos + 1]} << 16) |
+                            (uint64_t{data[pos + 2]} << 8) | data[pos + 3];
+    if (length > size - pos - 12) return false;
+    if (std::memcmp(data + pos + 4, "IEND", 4) == 0) return true;
+    pos += 12 + length;
+  }
+  return false;  // no IEND
+}
+
+Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadContext& ctx) {
+  const ImageDesc& desc = doc.images[static_cast<size_t>(index)];
+  std::string label = desc.name;
+  if (label.empty() && !desc.uri.empty() && !isDataUri(desc.uri)) label = desc.uri;
+  if (label.empty()) label = "image " + std::to_string(index);
+  std::string what = "image " + std::to_string(index);
+  if (!desc.uri.empty() && !isDataUri(desc.uri)) {
+    what += " ('" + desc.uri + "')";
+  } else if (!desc.name.empty()) {
+    what += " ('" + desc.name + "')";
+  }
+
+  std::vector<uint8_t> owned;
+  const uint8_t* data = nullptr;
+  uint64_t size = 0;
+  if (desc.bufferView >= 0) {
+    auto view = viewBytes(doc, desc.bufferView, ctx);
+    if (!view.ok()) return view.error();
+    data = view->data;
+    size = view->size;
+  } else {
+    const uint64_t left = static_cast<uint64_t>(
+        std::max<int64_t>(ctx.options.memoryBudgetBytes - ctx.bytesReserved, 0));
+    auto bytes = readUri(desc.uri, what, ctx, left);
+    if (!bytes.ok()) {
+      // The message already names the file; keep only the reason after "<file>: ".
+      std::string reason = bytes.message();
+      if (reason.rfind(ctx.name + ": ", 0) == 0) reason = reason.substr(ctx.name.size() + 2);
+      ctx.warn(reason + "; using a 1x1 placeholder");
+      return placeholder(label, normalOnly);
+    }
+    owned = std::move(bytes).value();
+    data = owned.data();
+    size = owned.size();
+  }
+
+  if (!pngChunksFit(data, size)) {
+    ctx.warn(what +
+             ": cannot decode (corrupt PNG: a chunk runs past the end of the data); "
+             "using a 1x1 placeholder");
+    return placeholder(label, normalOnly);
+  }
+  int w = 0, h = 0, comp = 0;
+  if (size == 0 || size > 0x7FFFFFFF ||
+      !stbi_info_from_memory(data, static_cast<int>(size), &w, &h, &comp)) {
+    ctx.warn(what + ": cannot decode (" + std::string(size == 0 ? "empty" : stbi_failure_reason()) +
+             "); using a 1x1 placeholder");
+    return placeholder(label, normalOnly);
+  }
+  PN_TRY(ctx.reserve(uint64_t(w) * uint64_t(h) * 4,
+                     what + " (" + std::to_string(w) + "x" + std::to_string(h) + " RGBA8)"));
+  int dw = 0, dh = 0;
+  stbi_uc* pixels = stbi_load_from_memory(data, static_cast<int>(size), &dw, &dh, &comp, 4);
+  if (!pixels) {
+    ctx.warn(what + ": cannot decode (" + std::string(stbi_failure_reason()) +
+             "); using a 1x1 placeholder");
+    return placeholder(label, normalOnly);
+  }
+  ImageData img;
+  img.name = label;
+  img.width = dw;
+  img.height = dh;
+  img.pixels.assign(pixels, pixels + static_cast<size_t>(dw) * static_cast<size_t>(dh) * 4);
+  stbi_image_free(pixels);
+
+  const int maxSize = std::max(1, ctx.options.maxTextureSize);
+  if (img.width > maxSize || img.height > maxSize) {
+    while (img.width > maxSize || img.height > maxSize) halve(img);
+    ctx.warn(what + ": " + std::to_string(dw) + "x" + std::to_string(dh) +
+             " is larger than the maximum texture size " + std::to_string(maxSize) +
+             "; downscaled to " + std::to_string(img.width) + "x" + std::to_string(img.height));
+  }
+  return img;
+}
+
+}  // namespace
+
+Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
+  scene.samplers = doc.samplers;
+
+  // Which images the materials use, and whether only as normal maps (for the placeholder).
+  std::vector<int> use(doc.images.size(), 0);
+  for (const MaterialDesc& md : doc.materials) {
+    for (int slot = 0; slot < kTextureSlotCount; ++slot) {
+      const int tex = md.textures[static_cast<size_t>(slot)].texture;
+      if (tex < 0) continue;
+      const int source = doc.textures[static_cast<size_t>(tex)].source;
+      if (source >= 0)
+        use[static_cast<size_t>(source)] |= slot == kNormalSlot ? kUsedAsNormal : kUsedOther;
+    }
+  }
+  std::vector<int> remap(doc.images.size(), -1);
+  for (size_t i = 0; i < doc.images.size(); ++i) {
+    if (!use[i]) continue;
+    auto img = decodeImage(doc, static_cast<int>(i), use[i] == kUsedAsNormal, ctx);
+    if (!img.ok()) return img.error();
+    remap[i] = static_cast<int>(scene.images.size());
+    scene.images.push_back(std::move(img).value());
+  }
+
+  static const char* kSlotNames[] = {"baseColorTexture", "metallicRoughnessTexture",
+                                     "normalTexture", "occlusionTexture", "emissiveTexture"};
+  for (size_t mi = 0; mi < doc.materials.size(); ++mi) {
+    const MaterialDesc& md = doc.materials[mi];
+    Material m = md.material;
+    TextureRef* refs[] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                          &m.occlusionTexture, &m.emissiveTexture};
+    for (int slot = 0; slot < kTextureSlotCount; ++slot) {
+      const TextureInfoDesc& info = md.textures[static_cast<size_t>(slot)];
+      if (info.texture < 0) continue;
+      const std::string where = "materials[" + std::to_string(mi) + "]." + kSlotNames[slot];
+      const TextureDesc& tex = doc.textures[static_cast<size_t>(info.texture)];
+      if (tex.source < 0) {
+        ctx.warn(where + ": texture " + std::to_string(info.texture) +
+                 " has no source this loader can decode; ignored");
+        continue;
+      }
+      TextureRef& ref = *refs[slot];
+      ref.image = remap[static_cast<size_t>(tex.source)];
+      ref.sampler = tex.sampler;
+      ref.texCoord = info.texCoord;
+      ref.transform = info.transform;
+      if (ref.texCoord > 1) {
+        ctx.warn(where + ": TEXCOORD_" + std::to_string(ref.texCoord) +
+                 " is not supported (only 0 and 1); using TEXCOORD_0");
+        ref.texCoord = 0;
+      }
+    }
+    scene.materials.push_back(std::move(m));
+  }
+  return {};
+}
+
+}  // namespace penumbra::gltf

@@ -1,0 +1,450 @@
+// JSON -> Document. Every property is read through typed getters that record the first error
+// with its JSON path ("accessors[3].bufferView: ..."), and every index is checked against the
+// array it refers to here, so the later stages can index without further checks.
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/gltf_document.h"
+#include "scene/gltf_json.h"
+
+namespace penumbra::gltf {
+namespace {
+
+TextureInfoDesc parseTextureInfo(Parser& p, const json& info, const std::string& path,
+                                 size_t textureCount) {
+  TextureInfoDesc t;
+  t.texture = p.index(info, "index", path, textureCount, "textures", true);
+  t.texCoord = static_cast<int>(p.integer(info, "texCoord", path, 0, false, 0, 1 << 20));
+  const json* ext = p.object(info, "extensions", path);
+  const json* tt = ext ? p.object(*ext, "KHR_texture_transform", path + ".extensions") : nullptr;
+  if (tt) {
+    const std::string tp = path + ".extensions.KHR_texture_transform";
+    const glm::vec2 offset = p.vec<2>(*tt, "offset", tp, glm::vec2(0.0f));
+    const glm::vec2 scale = p.vec<2>(*tt, "scale", tp, glm::vec2(1.0f));
+    const float rotation = static_cast<float>(p.number(*tt, "rotation", tp, 0.0));
+    t.texCoord = static_cast<int>(p.integer(*tt, "texCoord", tp, t.texCoord, false, 0, 1 << 20));
+    // glm is column-major: mat3(col0, col1, col2). The rotation follows the Khronos sample
+    // viewer, three.js and the TextureTransformTest model (u' = c*u + s*v, v' = -s*u + c*v);
+    // the GLSL listing in the extension's README has the opposite sign (KhronosGroup/glTF#1563).
+    const float c = std::cos(rotation);
+    const float s = std::sin(rotation);
+    const glm::mat3 translation(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+    const glm::mat3 rot(c, -s, 0, s, c, 0, 0, 0, 1);
+    const glm::mat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    t.transform = translation * rot * scaling;
+  }
+  return t;
+}
+
+LightType areaType(const std::string& s) {
+  return s == "disk" ? LightType::Disk : LightType::Rect;
+}
+
+}  // namespace
+
+Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
+  // Some writers pad the GLB JSON chunk with NULs instead of spaces.
+  while (!text.empty() && (text.back() == '\0' || text.back() == ' ')) text.remove_suffix(1);
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    // nlohmann's message is one line: "[json.exception.parse_error.101] parse error at ...".
+    std::string what = e.what();
+    const size_t bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    return ctx.error("bad JSON: " + what);
+  }
+  if (!root.is_object()) return ctx.error("bad JSON: the top level is not an object");
+
+  Parser p;
+  Document doc;
+  const json* asset = p.object(root, "asset", "glTF");
+  if (!asset) return ctx.error("not a glTF file (no 'asset' object)");
+  const std::string version = p.string(*asset, "version", "asset");
+  if (!version.empty() && version[0] != '2') {
+    return ctx.error("unsupported glTF version '" + version + "' (only 2.x is supported)");
+  }
+
+  auto strings = [&](const char* key, std::vector<std::string>& out) {
+    if (const json* arr = p.array(root, key, "glTF")) {
+      for (const json& e : *arr) {
+        if (e.is_string()) out.push_back(e.get<std::string>());
+      }
+    }
+  };
+  strings("extensionsUsed", doc.extensionsUsed);
+  strings("extensionsRequired", doc.extensionsRequired);
+
+  const size_t nBuffers = arraySize(root, "buffers");
+  const size_t nViews = arraySize(root, "bufferViews");
+  const size_t nAccessors = arraySize(root, "accessors");
+  const size_t nMeshes = arraySize(root, "meshes");
+  const size_t nNodes = arraySize(root, "nodes");
+  const size_t nMaterials = arraySize(root, "materials");
+  const size_t nTextures = arraySize(root, "textures");
+  const size_t nImages = arraySize(root, "images");
+  const size_t nSamplers = arraySize(root, "samplers");
+  const size_t nCameras = arraySize(root, "cameras");
+
+  forEach(p, root, "buffers", [&](const json& o, const std::string& path, size_t) {
+    BufferDesc b;
+    b.byteLength = static_cast<uint64_t>(p.integer(o, "byteLength", path, 0, true));
+    if (Parser::find(o, "uri")) {
+      b.hasUri = true;
+      b.uri = p.string(o, "uri", path);
+    }
+    if (const json* ext = p.object(o, "extensions", path)) {
+      if (const json* m = p.object(*ext, "EXT_meshopt_compression", path + ".extensions")) {
+        b.meshoptFallback = p.boolean(*m, "fallback", path, false);
+      }
+    }
+    doc.buffers.push_back(b);
+  });
+
+  forEach(p, root, "bufferViews", [&](const json& o, const std::string& path, size_t) {
+    BufferViewDesc v;
+    v.buffer = p.index(o, "buffer", path, nBuffers, "buffers", true);
+    v.byteOffset = static_cast<uint64_t>(p.integer(o, "byteOffset", path, 0));
+    v.byteLength = static_cast<uint64_t>(p.integer(o, "byteLength", path, 0, true));
+    v.byteStride = static_cast<uint64_t>(p.integer(o, "byteStride", path, 0, false, 0, 252));
+    if (const json* ext = p.object(o, "extensions", path)) {
+      if (const json* m = p.object(*ext, "EXT_meshopt_compression", path + ".extensions")) {
+        const std::string mp = path + ".extensions.EXT_meshopt_compression";
+        MeshoptDesc d;
+        d.buffer = p.index(*m, "buffer", mp, nBuffers, "buffers", true);
+        d.byteOffset = static_cast<uint64_t>(p.integer(*m, "byteOffset", mp, 0));
+        d.byteLength = static_cast<uint64_t>(p.integer(*m, "byteLength", mp, 0, true));
+        d.byteStride = static_cast<uint64_t>(p.integer(*m, "byteStride", mp, 0, true, 1, 256));
+        d.count = static_cast<uint64_t>(p.integer(*m, "count", mp, 0, true));
+        const std::string mode = p.string(*m, "mode", mp, "", true);
+        const std::string filter = p.string(*m, "filter", mp, "NONE");
+        if (mode == "ATTRIBUTES") {
+          d.mode = MeshoptMode::Attributes;
+        } else if (mode == "TRIANGLES") {
+          d.mode = MeshoptMode::Triangles;
+        } else if (mode == "INDICES") {
+          d.mode = MeshoptMode::Indices;
+        } else if (!p.failed()) {
+          p.fail(mp + ".mode", "unknown mode '" + mode + "'");
+        }
+        if (filter == "NONE") {
+          d.filter = MeshoptFilter::None;
+        } else if (filter == "OCTAHEDRAL") {
+          d.filter = MeshoptFilter::Octahedral;
+        } else if (filter == "QUATERNION") {
+          d.filter = MeshoptFilter::Quaternion;
+        } else if (filter == "EXPONENTIAL") {
+          d.filter = MeshoptFilter::Exponential;
+        } else {
+          p.fail(mp + ".filter", "unknown filter '" + filter + "'");
+        }
+        v.meshopt = d;
+      }
+    }
+    doc.bufferViews.push_back(v);
+  });
+
+  forEach(p, root, "accessors", [&](const json& o, const std::string& path, size_t) {
+    AccessorDesc a;
+    a.bufferView = p.index(o, "bufferView", path, nViews, "bufferViews");
+    a.byteOffset = static_cast<uint64_t>(p.integer(o, "byteOffset", path, 0));
+    a.componentType = static_cast<int>(p.integer(o, "componentType", path, 0, true));
+    if (!p.failed() && componentSize(a.componentType) == 0) {
+      p.fail(path + ".componentType",
+             "unsupported component type " + std::to_string(a.componentType));
+    }
+    a.normalized = p.boolean(o, "normalized", path, false);
+    a.count = static_cast<uint64_t>(p.integer(o, "count", path, 0, true));
+    a.type = p.string(o, "type", path, "", true);
+    a.components = componentsOf(a.type);
+    if (!p.failed() && a.components == 0) p.fail(path + ".type", "unknown type '" + a.type + "'");
+    if (const json* s = p.object(o, "sparse", path)) {
+      const std::string sp = path + ".sparse";
+      SparseDesc d;
+      d.count = static_cast<uint64_t>(p.integer(*s, "count", sp, 0, true));
+      const json* idx = p.object(*s, "indices", sp);
+      const json* val = p.object(*s, "values", sp);
+      if (!idx || !val) {
+        p.fail(sp, "needs 'indices' and 'values' objects");
+      } else {
+        d.indicesView = p.index(*idx, "bufferView", sp + ".indices", nViews, "bufferViews", true);
+        d.indicesOffset = static_cast<uint64_t>(p.integer(*idx, "byteOffset", sp + ".indices", 0));
+        d.indicesComponentType =
+            static_cast<int>(p.integer(*idx, "componentType", sp + ".indices", 0, true));
+        d.valuesView = p.index(*val, "bufferView", sp + ".values", nViews, "bufferViews", true);
+        d.valuesOffset = static_cast<uint64_t>(p.integer(*val, "byteOffset", sp + ".values", 0));
+      }
+      a.sparse = d;
+    }
+    doc.accessors.push_back(a);
+  });
+
+  forEach(p, root, "meshes", [&](const json& o, const std::string& path, size_t) {
+    MeshDesc m;
+    m.name = p.string(o, "name", path);
+    const json* prims = p.array(o, "primitives", path);
+    if (!prims) p.fail(path, "missing required 'primitives'");
+    for (size_t i = 0; prims && i < prims->size() && !p.failed(); ++i) {
+      const json& po = (*prims)[i];
+      const std::string pp = path + ".primitives[" + std::to_string(i) + "]";
+      PrimitiveDesc prim;
+      const json* attrs = p.object(po, "attributes", pp);
+      if (!attrs) {
+        p.fail(pp, "missing required 'attributes'");
+        break;
+      }
+      for (auto it = attrs->begin(); it != attrs->end(); ++it) {
+        prim.attributes[it.key()] =
+            p.checkIndex(it.value(), pp + ".attributes." + it.key(), nAccessors, "accessors");
+      }
+      prim.indices = p.index(po, "indices", pp, nAccessors, "accessors");
+      prim.material = p.index(po, "material", pp, nMaterials, "materials");
+      prim.mode = static_cast<int>(p.integer(po, "mode", pp, 4, false, 0, 6));
+      if (const json* ext = p.object(po, "extensions", pp)) {
+        if (const json* d = p.object(*ext, "KHR_draco_mesh_compression", pp + ".extensions")) {
+          const std::string dp = pp + ".extensions.KHR_draco_mesh_compression";
+          DracoDesc draco;
+          draco.bufferView = p.index(*d, "bufferView", dp, nViews, "bufferViews", true);
+          if (const json* da = p.object(*d, "attributes", dp)) {
+            for (auto it = da->begin(); it != da->end(); ++it) {
+              int64_t id = 0;
+              if (!p.asInteger(it.value(), 0, std::numeric_limits<int32_t>::max(), id)) {
+                p.fail(dp + ".attributes." + it.key(), "must be a non-negative integer");
+              }
+              draco.attributes[it.key()] = static_cast<int>(id);
+            }
+          }
+          prim.draco = draco;
+        }
+      }
+      m.primitives.push_back(std::move(prim));
+    }
+    doc.meshes.push_back(std::move(m));
+  });
+
+  // Lights live in root extensions; parse them before the nodes that refer to them.
+  const json* rootExt = p.object(root, "extensions", "glTF");
+  if (const json* area = rootExt ? p.object(*rootExt, "EXT_lights_area", "extensions") : nullptr) {
+    if (const json* lights = p.array(*area, "lights", "extensions.EXT_lights_area")) {
+      for (size_t i = 0; i < lights->size() && !p.failed(); ++i) {
+        const json& l = (*lights)[i];
+        const std::string lp = "extensions.EXT_lights_area.lights[" + std::to_string(i) + "]";
+        LightDesc d;
+        d.name = p.string(l, "name", lp);
+        const std::string type = p.string(l, "type", lp, "rect");
+        if (type != "rect" && type != "disk") {
+          ctx.warn(lp + ": unknown area light type '" + type + "', treated as 'rect'");
+        }
+        d.type = areaType(type);
+        d.color = p.vec<3>(l, "color", lp, glm::vec3(1.0f));
+        // NaN cannot be written in JSON; a negative intensity is dropped later with a warning.
+        d.intensity = static_cast<float>(p.number(l, "intensity", lp, 1000.0));
+        d.size = static_cast<float>(p.number(l, "size", lp, 1.0));
+        if (const json* rect = p.object(l, "rect", lp)) {
+          d.aspect = static_cast<float>(p.number(*rect, "aspect", lp + ".rect", 1.0));
+        }
+        doc.areaLights.push_back(d);
+      }
+    }
+  }
+  if (const json* punctual =
+          rootExt ? p.object(*rootExt, "KHR_lights_punctual", "extensions") : nullptr) {
+    if (const json* lights = p.array(*punctual, "lights", "extensions.KHR_lights_punctual")) {
+      for (size_t i = 0; i < lights->size() && !p.failed(); ++i) {
+        const json& l = (*lights)[i];
+        const std::string lp = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
+        LightDesc d;
+        d.name = p.string(l, "name", lp);
+        const std::string type = p.string(l, "type", lp, "", true);
+        if (type == "point") {
+          d.type = LightType::Point;
+        } else if (type == "spot") {
+          d.type = LightType::Spot;
+        } else if (type == "directional") {
+          d.type = LightType::Directional;
+        } else if (!p.failed()) {
+          p.fail(lp + ".type", "unknown punctual light type '" + type + "'");
+        }
+        d.color = p.vec<3>(l, "color", lp, glm::vec3(1.0f));
+        d.intensity = static_cast<float>(p.number(l, "intensity", lp, 1.0));
+        d.range = static_cast<float>(p.number(l, "range", lp, 0.0));
+        if (const json* spot = p.object(l, "spot", lp)) {
+          d.innerConeAngle =
+              static_cast<float>(p.number(*spot, "innerConeAngle", lp + ".spot", 0.0));
+          d.outerConeAngle =
+              static_cast<float>(p.number(*spot, "outerConeAngle", lp + ".spot", 0.785398163));
+        }
+        doc.punctualLights.push_back(d);
+      }
+    }
+  }
+
+  forEach(p, root, "nodes", [&](const json& o, const std::string& path, size_t) {
+    NodeDesc n;
+    n.name = p.string(o, "name", path);
+    if (const json* children = p.array(o, "children", path)) {
+      for (size_t i = 0; i < children->size(); ++i) {
+        n.children.push_back(p.checkIndex(
+            (*children)[i], path + ".children[" + std::to_string(i) + "]", nNodes, "nodes"));
+      }
+    }
+    n.mesh = p.index(o, "mesh", path, nMeshes, "meshes");
+    n.camera = p.index(o, "camera", path, nCameras, "cameras");
+    float m[16];
+    if (p.numbers<16>(o, "matrix", path, m)) {
+      n.local = glm::mat4(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11],
+                          m[12], m[13], m[14], m[15]);
+    } else {
+      const glm::vec3 t = p.vec<3>(o, "translation", path, glm::vec3(0.0f));
+      const glm::vec4 r = p.vec<4>(o, "rotation", path, glm::vec4(0, 0, 0, 1));
+      const glm::vec3 s = p.vec<3>(o, "scale", path, glm::vec3(1.0f));
+      // glTF stores quaternions as (x, y, z, w); glm::quat's constructor takes w first.
+      glm::quat q(r.w, r.x, r.y, r.z);
+      const float len = glm::length(q);
+      q = len > 0.0f ? q / len : glm::quat(1, 0, 0, 0);
+      glm::mat4 local = glm::mat4_cast(q);
+      local[0] *= s.x;
+      local[1] *= s.y;
+      local[2] *= s.z;
+      local[3] = glm::vec4(t, 1.0f);
+      n.local = local;
+    }
+    if (const json* ext = p.object(o, "extensions", path)) {
+      if (const json* a = p.object(*ext, "EXT_lights_area", path + ".extensions")) {
+        n.areaLight = p.index(*a, "light", path + ".extensions.EXT_lights_area",
+                              doc.areaLights.size(), "EXT_lights_area lights", true);
+      }
+      if (const json* l = p.object(*ext, "KHR_lights_punctual", path + ".extensions")) {
+        n.punctualLight = p.index(*l, "light", path + ".extensions.KHR_lights_punctual",
+                                  doc.punctualLights.size(), "KHR_lights_punctual lights", true);
+      }
+    }
+    doc.nodes.push_back(std::move(n));
+  });
+
+  forEach(p, root, "scenes", [&](const json& o, const std::string& path, size_t) {
+    SceneDesc s;
+    s.name = p.string(o, "name", path);
+    if (const json* nodes = p.array(o, "nodes", path)) {
+      for (size_t i = 0; i < nodes->size(); ++i) {
+        s.nodes.push_back(
+            p.checkIndex((*nodes)[i], path + ".nodes[" + std::to_string(i) + "]", nNodes, "nodes"));
+      }
+    }
+    doc.scenes.push_back(std::move(s));
+  });
+  doc.scene = p.index(root, "scene", "glTF", doc.scenes.size(), "scenes");
+
+  forEach(p, root, "materials", [&](const json& o, const std::string& path, size_t) {
+    MaterialDesc md;
+    Material& m = md.material;
+    m.name = p.string(o, "name", path);
+    if (const json* pbr = p.object(o, "pbrMetallicRoughness", path)) {
+      const std::string pp = path + ".pbrMetallicRoughness";
+      m.baseColorFactor = p.vec<4>(*pbr, "baseColorFactor", pp, glm::vec4(1.0f));
+      m.metallicFactor = static_cast<float>(p.number(*pbr, "metallicFactor", pp, 1.0));
+      m.roughnessFactor = static_cast<float>(p.number(*pbr, "roughnessFactor", pp, 1.0));
+      if (const json* t = p.object(*pbr, "baseColorTexture", pp)) {
+        md.textures[kBaseColorSlot] = parseTextureInfo(p, *t, pp + ".baseColorTexture", nTextures);
+      }
+      if (const json* t = p.object(*pbr, "metallicRoughnessTexture", pp)) {
+        md.textures[kMetallicRoughnessSlot] =
+            parseTextureInfo(p, *t, pp + ".metallicRoughnessTexture", nTextures);
+      }
+    }
+    if (const json* t = p.object(o, "normalTexture", path)) {
+      md.textures[kNormalSlot] = parseTextureInfo(p, *t, path + ".normalTexture", nTextures);
+      m.normalScale = static_cast<float>(p.number(*t, "scale", path + ".normalTexture", 1.0));
+    }
+    if (const json* t = p.object(o, "occlusionTexture", path)) {
+      md.textures[kOcclusionSlot] = parseTextureInfo(p, *t, path + ".occlusionTexture", nTextures);
+      m.occlusionStrength =
+          static_cast<float>(p.number(*t, "strength", path + ".occlusionTexture", 1.0));
+    }
+    if (const json* t = p.object(o, "emissiveTexture", path)) {
+      md.textures[kEmissiveSlot] = parseTextureInfo(p, *t, path + ".emissiveTexture", nTextures);
+    }
+    m.emissiveFactor = p.vec<3>(o, "emissiveFactor", path, glm::vec3(0.0f));
+    const std::string alpha = p.string(o, "alphaMode", path, "OPAQUE");
+    if (alpha == "MASK") {
+      m.alphaMode = AlphaMode::Mask;
+    } else if (alpha == "BLEND") {
+      m.alphaMode = AlphaMode::Blend;
+    } else if (alpha != "OPAQUE") {
+      ctx.warn(path + ".alphaMode: unknown value '" + alpha + "', using OPAQUE");
+    }
+    m.alphaCutoff = static_cast<float>(p.number(o, "alphaCutoff", path, 0.5));
+    m.doubleSided = p.boolean(o, "doubleSided", path, false);
+    if (const json* ext = p.object(o, "extensions", path)) {
+      if (const json* es =
+              p.object(*ext, "KHR_materials_emissive_strength", path + ".extensions")) {
+        m.emissiveStrength = static_cast<float>(p.number(
+            *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
+      }
+    }
+    doc.materials.push_back(std::move(md));
+  });
+
+  forEach(p, root, "textures", [&](const json& o, const std::string& path, size_t) {
+    TextureDesc t;
+    t.source = p.index(o, "source", path, nImages, "images");
+    t.sampler = p.index(o, "sampler", path, nSamplers, "samplers");
+    doc.textures.push_back(t);
+  });
+
+  forEach(p, root, "images", [&](const json& o, const std::string& path, size_t) {
+    ImageDesc im;
+    im.name = p.string(o, "name", path);
+    im.uri = p.string(o, "uri", path);
+    im.mimeType = p.string(o, "mimeType", path);
+    im.bufferView = p.index(o, "bufferView", path, nViews, "bufferViews");
+    if (!p.failed() && im.uri.empty() && im.bufferView < 0) {
+      p.fail(path, "needs a 'uri' or a 'bufferView'");
+    }
+    doc.images.push_back(std::move(im));
+  });
+
+  forEach(p, root, "samplers", [&](const json& o, const std::string& path, size_t) {
+    SamplerDesc s;
+    s.magFilter = static_cast<int>(p.integer(o, "magFilter", path, s.magFilter));
+    s.minFilter = static_cast<int>(p.integer(o, "minFilter", path, s.minFilter));
+    s.wrapS = static_cast<int>(p.integer(o, "wrapS", path, s.wrapS));
+    s.wrapT = static_cast<int>(p.integer(o, "wrapT", path, s.wrapT));
+    doc.samplers.push_back(s);
+  });
+
+  forEach(p, root, "cameras", [&](const json& o, const std::string& path, size_t) {
+    CameraDesc c;
+    c.name = p.string(o, "name", path);
+    const std::string type = p.string(o, "type", path, "", true);
+    if (type == "perspective") {
+      const json* persp = p.object(o, "perspective", path);
+      if (!persp) {
+        p.fail(path, "missing 'perspective'");
+      } else {
+        const std::string pp = path + ".perspective";
+        c.yfov = static_cast<float>(p.number(*persp, "yfov", pp, 0.8, true));
+        c.aspect = static_cast<float>(p.number(*persp, "aspectRatio", pp, 0.0));
+        c.znear = static_cast<float>(p.number(*persp, "znear", pp, 0.05, true));
+        c.zfar = static_cast<float>(p.number(*persp, "zfar", pp, 0.0));
+        if (!p.failed() && (c.yfov <= 0.0f || c.yfov >= 3.14159f || c.znear <= 0.0f ||
+                            (c.zfar != 0.0f && c.zfar <= c.znear))) {
+          p.fail(pp, "needs 0 < yfov < pi and 0 < znear < zfar");
+        }
+      }
+    } else if (type == "orthographic") {
+      c.perspective = false;
+    } else if (!p.failed()) {
+      p.fail(path + ".type", "unknown camera type '" + type + "'");
+    }
+    doc.cameras.push_back(std::move(c));
+  });
+
+  if (p.failed()) return ctx.error(p.error());
+  return doc;
+}
+
+}  // namespace penumbra::gltf

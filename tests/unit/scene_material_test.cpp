@@ -1,0 +1,216 @@
+// glTF materials, textures, samplers and images.
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "penumbra/image.h"
+#include "scene_gltf_builder.h"
+
+namespace penumbra::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::vector<uint8_t> makePng(int w, int h, glm::vec4 color) {
+  Image img(w, h, 4);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float* p = img.pixel(x, y);
+      // A gradient in red so downscaling has something to average.
+      p[0] = w > 1 ? static_cast<float>(x) / static_cast<float>(w - 1) * color.r : color.r;
+      p[1] = color.g;
+      p[2] = color.b;
+      p[3] = color.a;
+    }
+  }
+  auto png = encodePng(img);
+  EXPECT_TRUE(png.ok()) << png.message();
+  return png.ok() ? *png : std::vector<uint8_t>{};
+}
+
+std::string pngDataUri(int w, int h, glm::vec4 color) {
+  return "data:image/png;base64," + base64(makePng(w, h, color));
+}
+
+TEST(SceneGltfMaterial, EveryMaterialFieldAndTextureTransform) {
+  GltfBuilder b;
+  b.push("images", {{"uri", pngDataUri(2, 2, {1, 0, 0, 1})}, {"name", "red"}});
+  const auto green = makePng(1, 1, {0, 1, 0, 1});
+  b.push("images", {{"bufferView", b.view(green)}, {"mimeType", "image/png"}});
+  b.push("images", {{"uri", "missing_normal.png"}});
+  b.push("images", {{"uri", pngDataUri(1, 1, {1, 1, 1, 1})}});  // unused: not decoded
+  b.push("samplers",
+         {{"magFilter", 9728}, {"minFilter", 9984}, {"wrapS", 33071}, {"wrapT", 33648}});
+  b.push("textures", {{"source", 0}, {"sampler", 0}});
+  b.push("textures", {{"source", 1}});
+  b.push("textures", {{"source", 2}});
+  b.useExtension("KHR_texture_transform");
+  b.useExtension("KHR_materials_emissive_strength");
+  const float halfPi = 1.57079633f;
+  b.push("materials",
+         {{"name", "full"},
+          {"pbrMetallicRoughness",
+           {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}},
+            {"metallicFactor", 0.3},
+            {"roughnessFactor", 0.6},
+            {"baseColorTexture", {{"index", 0}, {"texCoord", 1}}},
+            {"metallicRoughnessTexture", {{"index", 1}}}}},
+          {"normalTexture", {{"index", 2}, {"scale", 0.5}}},
+          {"occlusionTexture", {{"index", 1}, {"strength", 0.7}, {"texCoord", 1}}},
+          {"emissiveTexture",
+           {{"index", 0},
+            {"extensions",
+             {{"KHR_texture_transform",
+               {{"offset", {0.5, 0.25}},
+                {"rotation", halfPi},
+                {"scale", {2, 3}},
+                {"texCoord", 1}}}}}}},
+          {"emissiveFactor", {1.0, 0.5, 0.25}},
+          {"alphaMode", "MASK"},
+          {"alphaCutoff", 0.3},
+          {"doubleSided", true},
+          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 5.0}}}}}});
+  b.scene({b.node({{"mesh", b.quadMesh(0)}})});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_EQ(scene->materials.size(), 1u);
+  const Material& m = scene->materials[0];
+  EXPECT_EQ(m.name, "full");
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 0.75f));
+  EXPECT_FLOAT_EQ(m.metallicFactor, 0.3f);
+  EXPECT_FLOAT_EQ(m.roughnessFactor, 0.6f);
+  EXPECT_EQ(m.emissiveFactor, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(m.emissiveStrength, 5.0f);
+  EXPECT_FLOAT_EQ(m.normalScale, 0.5f);
+  EXPECT_FLOAT_EQ(m.occlusionStrength, 0.7f);
+  EXPECT_EQ(m.alphaMode, AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(m.alphaCutoff, 0.3f);
+  EXPECT_TRUE(m.doubleSided);
+
+  // Three images are used; the fourth is never decoded.
+  ASSERT_EQ(scene->images.size(), 3u);
+  ASSERT_TRUE(m.baseColorTexture.valid());
+  const ImageData& red = scene->images[static_cast<size_t>(m.baseColorTexture.image)];
+  EXPECT_EQ(red.name, "red");
+  EXPECT_EQ(red.width, 2);
+  EXPECT_EQ(red.height, 2);
+  EXPECT_FALSE(red.placeholder);
+  EXPECT_EQ(red.pixels[4], 255);  // texel (1,0): full red
+  EXPECT_EQ(red.pixels[7], 255);
+  EXPECT_EQ(m.baseColorTexture.texCoord, 1);
+  EXPECT_EQ(m.baseColorTexture.sampler, 0);
+  EXPECT_EQ(m.baseColorTexture.transform, glm::mat3(1.0f));
+
+  const ImageData& greenImg = scene->images[static_cast<size_t>(m.metallicRoughnessTexture.image)];
+  EXPECT_EQ(greenImg.pixels, (std::vector<uint8_t>{0, 255, 0, 255}));
+  EXPECT_EQ(m.metallicRoughnessTexture.sampler, -1);
+  EXPECT_EQ(m.metallicRoughnessTexture.texCoord, 0);
+  EXPECT_EQ(m.occlusionTexture.image, m.metallicRoughnessTexture.image);
+  EXPECT_EQ(m.occlusionTexture.texCoord, 1);
+
+  // The missing normal map: a warning and a flat-normal placeholder, not an error.
+  const ImageData& normal = scene->images[static_cast<size_t>(m.normalTexture.image)];
+  EXPECT_TRUE(normal.placeholder);
+  EXPECT_EQ(normal.pixels, (std::vector<uint8_t>{128, 128, 255, 255}));
+  EXPECT_TRUE(hasWarning(*scene, "missing_normal.png"));
+
+  // KHR_texture_transform: offset, rotation, scale as one matrix, and the texCoord override.
+  EXPECT_EQ(m.emissiveTexture.texCoord, 1);
+  const glm::vec3 uv = m.emissiveTexture.transform * glm::vec3(1, 0, 1);
+  // scale -> (2, 0); rotate by pi/2 (u' = c u + s v, v' = -s u + c v) -> (0, -2); offset.
+  EXPECT_NEAR(uv.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(uv.y, -1.75f, 1e-5f);
+  EXPECT_NEAR(uv.z, 1.0f, 1e-6f);
+  const glm::vec3 uv2 = m.emissiveTexture.transform * glm::vec3(0, 1, 1);
+  EXPECT_NEAR(uv2.x, 0.5f + 3.0f, 1e-5f);
+  EXPECT_NEAR(uv2.y, 0.25f, 1e-5f);
+
+  ASSERT_EQ(scene->samplers.size(), 1u);
+  EXPECT_EQ(scene->samplers[0].magFilter, 9728);
+  EXPECT_EQ(scene->samplers[0].minFilter, 9984);
+  EXPECT_EQ(scene->samplers[0].wrapS, 33071);
+  EXPECT_EQ(scene->samplers[0].wrapT, 33648);
+
+  // The normal-mapped primitive got tangents.
+  EXPECT_EQ(scene->meshes[0].primitives[0].tangents.size(), 4u);
+}
+
+TEST(SceneGltfMaterial, DefaultsAndAlphaModes) {
+  GltfBuilder b;
+  b.push("materials", json::object());
+  b.push("materials", {{"alphaMode", "BLEND"}});
+  b.push("materials", {{"alphaMode", "MASK"}});
+  b.push("materials", {{"alphaMode", "SHINY"}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_EQ(scene->materials.size(), 4u);
+  const Material& d = scene->materials[0];
+  EXPECT_EQ(d.alphaMode, AlphaMode::Opaque);
+  EXPECT_EQ(d.baseColorFactor, glm::vec4(1.0f));
+  EXPECT_EQ(d.metallicFactor, 1.0f);
+  EXPECT_EQ(d.roughnessFactor, 1.0f);
+  EXPECT_EQ(d.emissiveFactor, glm::vec3(0.0f));
+  EXPECT_EQ(d.emissiveStrength, 1.0f);
+  EXPECT_FALSE(d.doubleSided);
+  EXPECT_FALSE(d.baseColorTexture.valid());
+  EXPECT_EQ(scene->materials[1].alphaMode, AlphaMode::Blend);
+  EXPECT_EQ(scene->materials[2].alphaMode, AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(scene->materials[2].alphaCutoff, 0.5f);
+  EXPECT_EQ(scene->materials[3].alphaMode, AlphaMode::Opaque);
+  EXPECT_TRUE(hasWarning(*scene, "SHINY"));
+}
+
+TEST(SceneGltfMaterial, OversizedImagesAreHalvedUntilTheyFit) {
+  GltfBuilder b;
+  b.push("images", {{"uri", pngDataUri(8, 4, {1, 0.5f, 0, 1})}});
+  b.push("textures", {{"source", 0}});
+  b.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  LoadOptions options;
+  options.maxTextureSize = 2;
+  auto scene = b.load(false, options);
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_EQ(scene->images.size(), 1u);
+  EXPECT_EQ(scene->images[0].width, 2);
+  EXPECT_EQ(scene->images[0].height, 1);
+  EXPECT_EQ(scene->images[0].pixels.size(), 8u);
+  EXPECT_TRUE(hasWarning(*scene, "downscaled to 2x1"));
+  // Red is a gradient 0..1 over x: the left half averages low, the right half high.
+  EXPECT_LT(scene->images[0].pixels[0], scene->images[0].pixels[4]);
+}
+
+TEST(SceneGltfMaterial, UndecodableOrMissingImagesBecomePlaceholders) {
+  GltfBuilder b;
+  b.push("images", {{"uri", "data:image/png;base64,AAAAAAAA"}});
+  b.push("images", {{"uri", "no/such/texture.png"}});
+  b.push("textures", {{"source", 0}});
+  b.push("textures", {{"source", 1}});
+  b.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                       {"emissiveTexture", {{"index", 1}}}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_EQ(scene->images.size(), 2u);
+  for (const ImageData& img : scene->images) {
+    EXPECT_TRUE(img.placeholder);
+    EXPECT_EQ(img.pixels, (std::vector<uint8_t>{255, 255, 255, 255}));
+  }
+  EXPECT_TRUE(hasWarning(*scene, "image 0: cannot decode"));
+  EXPECT_TRUE(hasWarning(*scene, "no/such/texture.png"));
+  for (const auto& w : scene->warnings) EXPECT_THAT(w, HasSubstr("test.gltf: "));
+}
+
+TEST(SceneGltfMaterial, ImageOverTheMemoryBudgetIsAnError) {
+  GltfBuilder b;
+  b.push("images", {{"uri", pngDataUri(64, 64, {1, 1, 1, 1})}});
+  b.push("textures", {{"source", 0}});
+  b.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  LoadOptions options;
+  options.memoryBudgetBytes = 8000;  // the 64x64 RGBA8 image needs 16 KiB
+  auto scene = b.load(false, options);
+  ASSERT_FALSE(scene.ok());
+  EXPECT_THAT(scene.message(), HasSubstr("memory budget"));
+  EXPECT_THAT(scene.message(), HasSubstr("image 0"));
+}
+
+}  // namespace
+}  // namespace penumbra::test
