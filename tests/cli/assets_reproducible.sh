@@ -54,7 +54,8 @@ done < <(find "$tmp" -type f -print0 | sort -z)
 # Committed files in generated folders that no generator writes any more (stale).
 while IFS= read -r -d '' f; do
   rel="${f#"$src/assets"/}"
-  case "$rel" in README.md|*/README.md|.gitattributes|*.json) continue ;;  # scene files (*.json) are written by hand esac
+  # Scene files (*.json) are written by hand, not generated.
+  case "$rel" in README.md|*/README.md|.gitattributes|*.json) continue ;; esac
   if [ ! -f "$tmp/$rel" ]; then
     echo "FAIL: assets/$rel is committed but no generator in tools/assets/generate_all writes it"
     fail=1
