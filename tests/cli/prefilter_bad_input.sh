@@ -141,6 +141,15 @@ else
   fi
 fi
 
+# The GPU path (forced) writes the same packed file layout and says which path ran.
+if "$TOOL" "$WORK/pano.pfm" -o "$WORK/gpu" --size 16 --samples 32 --gpu >"$WORK/gpu.txt" 2>&1 &&
+    [ -s "$WORK/gpu/environment.hdr" ] && grep -q "GPU path" "$WORK/gpu.txt"; then
+  echo "ok   [gpu-run]"
+else
+  echo "FAIL [gpu-run]: $(cat "$WORK/gpu.txt")" >&2
+  failures=$((failures + 1))
+fi
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures case(s) failed" >&2
   exit 1

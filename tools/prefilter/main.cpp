@@ -13,8 +13,10 @@
 #include <vector>
 
 #include "penumbra/environment_format.h"
+#include "penumbra/gl_context.h"
 #include "penumbra/ibl.h"
 #include "penumbra/image.h"
+#include "penumbra/prefilter_gpu.h"
 
 namespace {
 
@@ -132,8 +134,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"packed", "faces-exr", "faces-hdr", "faces-png", "all"}))
       ->capture_default_str();
   app.add_option("--lut-size", lutSize, "DFG LUT width and height")->capture_default_str();
-  auto* cpuFlag = app.add_flag("--cpu", useCpu, "prefilter on the CPU (the default)");
-  app.add_flag("--gpu", useGpu, "prefilter on the GPU (not available yet: falls back to the CPU)")
+  auto* cpuFlag = app.add_flag("--cpu", useCpu,
+                               "prefilter on the CPU (the reference; by default the GPU is used "
+                               "only where it is faster, i.e. on a hardware GPU)");
+  app.add_flag("--gpu", useGpu, "prefilter on the GPU through OpenGL ES 3.0 (falls back to the CPU "
+                                "with a warning when no context can be made)")
       ->excludes(cpuFlag);
   app.add_option("--threads", threads, "worker threads, 0 = all cores")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
@@ -161,11 +166,6 @@ int main(int argc, char** argv) {
   if (threads < 0) {
     fail("--threads must be 0 (all cores) or positive, got " + std::to_string(threads));
     return 1;
-  }
-  if (useGpu) {
-    std::fprintf(stderr,
-                 "penumbra-prefilter: warning: the GPU prefilter is not available yet; using the "
-                 "CPU path\n");
   }
   if (Status s = checkOutputFolder(outDir); !s.ok()) {
     fail(s.message());
@@ -198,7 +198,21 @@ int main(int argc, char** argv) {
   options.samples = samples;
   options.threads = threads;
   options.progress = [&bar](float f) { bar(f); };
-  auto env = ibl::prefilterCpu(*panorama, options);
+  // The GPU path when asked for, or by default where it is faster (a hardware GPU).
+  std::unique_ptr<penumbra::GlContext> context;
+  if (!useCpu) {
+    auto ctx = penumbra::GlContext::create();
+    if (ctx) {
+      if (useGpu || penumbra::gpuPrefilterIsFaster()) context = std::move(*ctx);
+    } else if (useGpu) {
+      std::fprintf(stderr, "penumbra-prefilter: warning: no GL context for --gpu (%s); using the CPU\n",
+                   ctx.message().c_str());
+    }
+  }
+  auto env = context ? penumbra::prefilterGpu(*panorama, options) : ibl::prefilterCpu(*panorama, options);
+  if (!quiet) {
+    std::fprintf(stderr, "penumbra-prefilter: %s path\n", context ? "GPU" : "CPU");
+  }
   if (!env) {
     fail(env.message());
     return 1;

@@ -218,6 +218,11 @@ void TextureCube::upload(int face, int level, const void* data, DataType type) {
                   uploadType(type, desc_.format), data);
 }
 
+void TextureCube::generateMipmaps() {
+  glBindTexture(GL_TEXTURE_CUBE_MAP, handle_.id());
+  glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+}
+
 void TextureCube::setSampler(const SamplerState& sampler) {
   desc_.sampler = sampler;
   glBindTexture(GL_TEXTURE_CUBE_MAP, handle_.id());

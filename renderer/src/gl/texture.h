@@ -78,6 +78,7 @@ class TextureCube {
 
   // face: 0..5 in GL order +X, -X, +Y, -Y, +Z, -Z.
   void upload(int face, int level, const void* data, DataType type);
+  void generateMipmaps();
   void setSampler(const SamplerState& sampler);
   void bind(int unit) const;
 
