@@ -3,8 +3,9 @@
 namespace penumbra::passes {
 
 Result<FullscreenPass> FullscreenPass::create(gl::ShaderLibrary& library,
-                                              const char* fragmentFile) {
-  auto program = library.program("fullscreen.vert", fragmentFile);
+                                              const char* fragmentFile, bool farPlane) {
+  auto program =
+      library.program("fullscreen.vert", fragmentFile, {{"PN_FAR_PLANE", farPlane ? "1" : "0"}});
   if (!program) return program.error();
   FullscreenPass pass;
   pass.program_ = *program;

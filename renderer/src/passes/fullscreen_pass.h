@@ -9,7 +9,9 @@ namespace penumbra::passes {
 
 class FullscreenPass {
  public:
-  static Result<FullscreenPass> create(gl::ShaderLibrary& library, const char* fragmentFile);
+  // farPlane: draw at depth 1 (with begin(true), only where no geometry was drawn).
+  static Result<FullscreenPass> create(gl::ShaderLibrary& library, const char* fragmentFile,
+                                       bool farPlane = false);
   // Uses the program and sets the pipeline state (no depth test unless `depthTest`).
   const gl::Program& begin(bool depthTest = false) const;
   void draw() const;

@@ -71,12 +71,14 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (!pre) return pre.error();
     prepassProgram = *pre;
     for (auto [slot, file] :
-         {std::pair{&accumulate, "accumulate.frag"}, std::pair{&tonemap, "tonemap.frag"},
-          std::pair{&background, "background.frag"}}) {
+         {std::pair{&accumulate, "accumulate.frag"}, std::pair{&tonemap, "tonemap.frag"}}) {
       auto p = passes::FullscreenPass::create(library, file);
       if (!p) return p.error();
       slot->emplace(std::move(*p));
     }
+    auto bg = passes::FullscreenPass::create(library, "background.frag", /*farPlane=*/true);
+    if (!bg) return bg.error();
+    background.emplace(std::move(*bg));
     auto d = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
     if (!d) return d.error();
     const uint8_t black[4] = {0, 0, 0, 0};
@@ -280,6 +282,17 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return gl::checkError("frame " + std::to_string(plan.frame));
   }
 
+  // The environment behind the scene: drawn after the opaque geometry at the far plane, so
+  // only uncovered pixels pay for it.
+  void drawBackground(const glm::mat4& viewProj) {
+    if (!settings.showBackground) return;
+    const gl::Program& bg = background->begin(/*depthTest=*/true);
+    environment->bind(bg, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
+    bg.set("uInvViewProj", glm::inverse(viewProj));
+    bg.set("uBackgroundBlur", settings.backgroundBlur);
+    background->draw();
+  }
+
   Status drawLighting(const FramePlan& plan, const CameraMatrices& cm, const CameraMatrices& plain,
                       const glm::mat4& viewProj, bool first,
                       const std::vector<const LightSample*>& batch,
@@ -292,15 +305,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
       gl::apply({});
       gl::clearBufferFloat(0, 0, 0, 0, 1);
       gl::clearDepth(1.0f);
-      if (settings.showBackground) {
-        const gl::Program& bg = background->begin();
-        environment->bind(bg, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
-        bg.set("uInvViewProj", glm::inverse(viewProj));
-        bg.set("uBackgroundBlur", settings.backgroundBlur);
-        background->draw();
-      }
     }
-    if (!scene) return Status{};
+    if (!scene) {
+      if (first) drawBackground(viewProj);
+      return Status{};
+    }
     // Occlusion only in the first batch: extra batches add direct light alone.
     const bool occlusion = first && plan.occlusion && prepassValid;
     auto program = lightingProgram(occlusion, !batch.empty(), !punctual.empty());
@@ -380,6 +389,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     targets->frame.framebuffer.bind();
     drawList(p, scene->opaque(), true, opaque);
+    if (first) drawBackground(viewProj);
     if (first && !scene->blended().empty()) {
       std::vector<DrawItem> sorted = scene->blended();
       std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& a, const DrawItem& b) {
