@@ -114,6 +114,7 @@ TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
 
 TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   Loaded l = loadCornell(32, 32);
+  l.env = uniformEnvironment(glm::vec3(0.2f));  // a lit environment: the f_d delay applies
   auto r = makeRenderer(l);
   ASSERT_EQ(*r->step(), 1);
   EXPECT_EQ(r->lastFrame().shadowPasses, 0);
@@ -141,6 +142,23 @@ TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   // Restarting (a camera change) begins again at frame 1 with no shadow pass.
   r->setCamera(l.camera);
   ASSERT_EQ(*r->step(), 1);
+  EXPECT_EQ(r->lastFrame().shadowPasses, 0);
+}
+
+TEST_F(RendererGLTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
+  Loaded l = loadCornell(24, 32);  // black environment
+  auto r = makeRenderer(l);
+  ASSERT_EQ(*r->step(), 1);
+  EXPECT_EQ(r->lastFrame().shadowPasses, 0) << "frame 1 stays environment only";
+  ASSERT_EQ(*r->step(), 2);
+  EXPECT_GT(r->lastFrame().shadowPasses, 0);
+  // Turning the environment up restores the delay.
+  RenderSettings s = l.settings;
+  s.environmentIntensity = 1.0f;
+  ASSERT_TRUE(r->setEnvironment(uniformEnvironment(glm::vec3(0.5f))).ok());
+  ASSERT_TRUE(r->setSettings(s).ok());
+  ASSERT_EQ(*r->step(), 1);
+  ASSERT_EQ(*r->step(), 2);
   EXPECT_EQ(r->lastFrame().shadowPasses, 0);
 }
 

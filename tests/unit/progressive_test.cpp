@@ -81,6 +81,21 @@ TEST(DistributorTest, FrameOneIsEnvironmentOnlyAndThePrepassComesAtFrameTwo) {
   EXPECT_FALSE(plan[37].lights.empty());
 }
 
+TEST(DistributorTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
+  ProgressiveSettings s;
+  s.frames = 128;
+  auto plan = distributeSamples(s, lights(1), /*darkEnvironment=*/true);
+  EXPECT_TRUE(plan[0].lights.empty());
+  EXPECT_FALSE(plan[1].lights.empty());
+  double w = 0.0;
+  for (const auto& f : plan) {
+    for (const auto& l : f.lights) w += l.weight;
+  }
+  EXPECT_NEAR(w, 128.0, 1e-3);
+  EXPECT_EQ(directStartFrame(128, 0.3f, true), 2);
+  EXPECT_EQ(directStartFrame(1, 0.3f, true), 1);
+}
+
 TEST(DistributorTest, SingleFrameEvaluatesEveryLightOnce) {
   ProgressiveSettings s;
   s.frames = 1;

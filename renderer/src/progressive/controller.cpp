@@ -20,9 +20,16 @@ void Controller::setLights(const std::vector<LightInfo>& lights) {
   next_ = 1;
 }
 
+void Controller::setDarkEnvironment(bool dark) {
+  if (dark == darkEnvironment_) return;
+  darkEnvironment_ = dark;
+  planValid_ = false;
+  next_ = 1;
+}
+
 const std::vector<FramePlan>& Controller::plan() {
   if (!planValid_) {
-    plan_ = distributeSamples(settings_, lights_);
+    plan_ = distributeSamples(settings_, lights_, darkEnvironment_);
     planValid_ = true;
   }
   return plan_;

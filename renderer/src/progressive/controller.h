@@ -26,6 +26,8 @@ class Controller {
   // Each of these restarts at frame 1 when it changes anything.
   void setSettings(const ProgressiveSettings& settings);
   void setLights(const std::vector<LightInfo>& lights);
+  // A black environment: direct light starts at frame 2 instead of floor(m f_d).
+  void setDarkEnvironment(bool dark);
   // The camera or the scene changed: restart (the plan itself stays the same).
   void invalidate() { next_ = 1; }
 
@@ -43,6 +45,7 @@ class Controller {
   std::vector<LightInfo> lights_;
   std::vector<FramePlan> plan_;
   bool planValid_ = false;
+  bool darkEnvironment_ = false;
   int next_ = 1;
 };
 

@@ -5,8 +5,9 @@
 
 namespace penumbra::progressive {
 
-int directStartFrame(int frames, float directDelay) {
+int directStartFrame(int frames, float directDelay, bool darkEnvironment) {
   if (frames <= 1) return 1;
+  if (darkEnvironment) return 2;
   int start = static_cast<int>(std::floor(static_cast<double>(frames) * directDelay));
   return std::clamp(start, 2, frames);
 }
@@ -20,7 +21,8 @@ int automaticLightSamples(int frames, float directDelay, int lightCount) {
 }
 
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
-                                         const std::vector<LightInfo>& lights) {
+                                         const std::vector<LightInfo>& lights,
+                                         bool darkEnvironment) {
   const int m = std::max(1, s.frames);
   std::vector<FramePlan> plan(static_cast<size_t>(m));
   for (int k = 0; k < m; ++k) {
@@ -63,7 +65,7 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
   });
 
   // Algorithm 1 over frames [start, m].
-  const int start = directStartFrame(m, s.directDelay);
+  const int start = directStartFrame(m, s.directDelay, darkEnvironment);
   const double numFrames = m - start + 1;
   const double framesPerSample = numFrames / static_cast<double>(all.size());
   double index = start;

@@ -22,11 +22,14 @@ struct LightInfo {
 
 // Samples per light when ProgressiveSettings::lightSamples is 0.
 int automaticLightSamples(int frames, float directDelay, int lightCount);
-// First frame (1-based) that carries direct-light samples.
-int directStartFrame(int frames, float directDelay);
+// First frame (1-based) that carries direct-light samples. The delay keeps navigation under
+// environment light free of flicker; with a dark environment there is nothing to show before
+// direct light, so it starts at frame 2.
+int directStartFrame(int frames, float directDelay, bool darkEnvironment = false);
 
 // The whole plan: element k is frame k + 1.
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& settings,
-                                         const std::vector<LightInfo>& lights);
+                                         const std::vector<LightInfo>& lights,
+                                         bool darkEnvironment = false);
 
 }  // namespace penumbra::progressive

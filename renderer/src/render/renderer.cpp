@@ -59,6 +59,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
   bool prepassValid = false;
   FrameStats stats;
   gl::Texture2D dummy2d;
+  float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
+
+  // With a black environment nothing is visible before direct light: start it at frame 2.
+  void updateDarkness() {
+    controller.setDarkEnvironment(environmentMean * settings.environmentIntensity < 1e-6f);
+  }
 
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
@@ -118,6 +124,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       shadows.emplace(std::move(*sp));
     }
     controller.setSettings(s.progressive);
+    updateDarkness();
     if (resize || restartNeeded) controller.invalidate();
     return {};
   }
@@ -425,6 +432,10 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   auto env = GpuEnvironment::create(environment);
   if (!env) return env.error();
   impl_->environment = std::move(*env);
+  // The mean radiance is the first SH coefficient times Y00.
+  const glm::vec3 mean = environment.sh.c[0] * 0.282095f;
+  impl_->environmentMean = std::max(mean.r, std::max(mean.g, mean.b));
+  impl_->updateDarkness();
   impl_->controller.invalidate();
   return {};
 }
