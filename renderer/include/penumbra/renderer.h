@@ -57,6 +57,11 @@ class Renderer {
   Result<Image> readRadiance();
   // The displayed image: exposure, tone mapping and sRGB applied, RGBA in [0, 1].
   Result<Image> readDisplay();
+  // Draws the displayed image (the same exposure, tone-mapping and sRGB pass as readDisplay)
+  // into the default framebuffer — the browser canvas — over a canvasWidth x canvasHeight
+  // viewport, scaling the accumulated image when the render resolution differs (nearest).
+  // Leaves framebuffer 0 bound. The web viewer calls it once per animation frame.
+  Status present(int canvasWidth, int canvasHeight);
 
   // The accumulation format in use and the capability report, for logs.
   std::string capabilityReport() const;
