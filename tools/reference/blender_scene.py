@@ -1,0 +1,300 @@
+"""Render a Penumbra scene file with Blender (Cycles reference or Eevee peer).
+
+Run by tools/reference/render:
+  blender -b --factory-startup --python tools/reference/blender_scene.py -- \
+      SCENE.json OUT.exr --engine cycles|eevee [--samples N] [--size WxH] [--threads T]
+
+What it does, so that Blender sees what Penumbra sees:
+  * imports the glTF with Blender's importer (numpy.bool workaround first);
+  * camera: the scene file's camera (name or index; else the first glTF camera), placed from
+    the glTF node hierarchy read here, vertical field of view kept (sensor fit VERTICAL),
+    aspect from the output size, as penumbra-render does;
+  * EXT_lights_area lights, which the importer ignores, become Blender area lights
+    (rect -> RECTANGLE size_x = size*aspect, size_y = size; disk -> DISK, size = diameter),
+    power P = 4 L A (Blender's area light emits radiance P / (4 A)), same colour, placed with
+    the node's world matrix so that local -Z (the emission direction) is kept;
+  * the lamp-surface proxies (extras.area_light_proxy) stay visible to camera rays only, so the
+    camera sees the lamp (as in Penumbra) but nothing is lit twice;
+  * environment: panorama as world texture (Blender's convention is the one Penumbra uses),
+    strength = intensity, rotation about +Y (glTF) = about +Z (Blender); or a uniform colour;
+  * Standard view transform, no denoising, box pixel filter 1 px (Penumbra's jittered running
+    mean), linear 32-bit EXR, render time written to OUT.json.
+"""
+import json
+import math
+import os
+import sys
+import time
+
+import numpy
+if not hasattr(numpy, "bool"):
+    numpy.bool = bool  # Debian's Blender 3.4 glTF importer uses numpy.bool (removed in numpy 1.24)
+
+import bpy
+import mathutils
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    import argparse
+    ap = argparse.ArgumentParser(prog="blender_scene.py")
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--engine", choices=["cycles", "eevee"], default="cycles")
+    ap.add_argument("--samples", type=int, default=128)
+    ap.add_argument("--size", default=None)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=1)
+    return ap.parse_args(argv)
+
+
+def load_scene(path):
+    path = os.path.abspath(path)
+    if path.endswith(".json"):
+        with open(path) as f:
+            sf = json.load(f)
+        base = os.path.dirname(path)
+        sf["gltf"] = os.path.normpath(os.path.join(base, sf["gltf"]))
+        env = sf.get("environment")
+        if isinstance(env, str):
+            env = {"file": env}
+        if isinstance(env, dict) and "file" in env:
+            env["file"] = os.path.normpath(os.path.join(base, env["file"]))
+        sf["environment"] = env
+    else:
+        sf = {"gltf": path}
+    return sf
+
+
+def read_gltf_json(path):
+    if path.endswith(".glb"):
+        import struct
+        with open(path, "rb") as f:
+            data = f.read()
+        magic, version, length = struct.unpack_from("<III", data, 0)
+        clen, ctype = struct.unpack_from("<II", data, 12)
+        return json.loads(data[20:20 + clen].decode("utf-8"))
+    with open(path) as f:
+        return json.load(f)
+
+
+def node_local(n):
+    if "matrix" in n:
+        m = n["matrix"]  # column-major
+        return mathutils.Matrix([[m[c * 4 + r] for c in range(4)] for r in range(4)])
+    t = n.get("translation", [0, 0, 0])
+    r = n.get("rotation", [0, 0, 0, 1])
+    s = n.get("scale", [1, 1, 1])
+    q = mathutils.Quaternion((r[3], r[0], r[1], r[2]))
+    return (mathutils.Matrix.Translation(t) @ q.to_matrix().to_4x4()
+            @ mathutils.Matrix.Diagonal((s[0], s[1], s[2], 1.0)))
+
+
+def world_matrices(g):
+    """World matrix (glTF frame) of every node reachable from the default scene."""
+    out = {}
+    scene = g.get("scenes", [{}])[g.get("scene", 0)] if g.get("scenes") else {"nodes": []}
+
+    def walk(i, parent):
+        m = parent @ node_local(g["nodes"][i])
+        out[i] = m
+        for c in g["nodes"][i].get("children", []):
+            walk(c, m)
+
+    for i in scene.get("nodes", []):
+        walk(i, mathutils.Matrix.Identity(4))
+    return out
+
+
+# glTF (x, y, z) -> Blender (x, -z, y): a rotation of +90 degrees about X.
+GLTF_TO_BLENDER = mathutils.Matrix(((1, 0, 0, 0), (0, 0, -1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
+
+
+def to_blender(m):
+    # Cameras and lights look down local -Z in both glTF and Blender: keep the local frame,
+    # change only the world frame.
+    return GLTF_TO_BLENDER @ m
+
+
+def main():
+    a = parse_args()
+    sf = load_scene(a.scene)
+    g = read_gltf_json(sf["gltf"])
+    worlds = world_matrices(g)
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    bpy.ops.import_scene.gltf(filepath=sf["gltf"])
+
+    # ---- output size
+    if a.size:
+        w, h = (int(v) for v in a.size.lower().split("x"))
+    elif "resolution" in sf:
+        w, h = sf["resolution"]
+    else:
+        w, h = 1280, 720
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    scene.render.resolution_percentage = 100
+    scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
+
+    # ---- camera (penumbra-render: scene file's camera by name or index, else the first)
+    cam_nodes = [i for i in sorted(worlds) if "camera" in g["nodes"][i]]
+    want = sf.get("camera")
+    cam_node = None
+    if isinstance(want, int):
+        cam_node = next((i for i in cam_nodes if g["nodes"][i]["camera"] == want), None)
+    elif isinstance(want, str):
+        for i in cam_nodes:
+            n = g["nodes"][i]
+            if n.get("name") == want or g["cameras"][n["camera"]].get("name") == want:
+                cam_node = i
+                break
+    if cam_node is None:
+        # the first camera of the file (cameras[0]) as penumbra-render does
+        cam_node = next((i for i in cam_nodes if g["nodes"][i]["camera"] == 0),
+                        cam_nodes[0] if cam_nodes else None)
+    if cam_node is None:
+        raise SystemExit("no camera in the glTF: Penumbra's automatic framing is not reproduced")
+    gcam = g["cameras"][g["nodes"][cam_node]["camera"]]
+    persp = gcam["perspective"]
+    cdata = bpy.data.cameras.new("penumbra_camera")
+    cdata.sensor_fit = "VERTICAL"
+    cdata.sensor_height = 24.0
+    cdata.angle_y = persp["yfov"]
+    cdata.clip_start = persp.get("znear", 0.01)
+    cdata.clip_end = persp.get("zfar", 1000.0)
+    cobj = bpy.data.objects.new("penumbra_camera", cdata)
+    scene.collection.objects.link(cobj)
+    cobj.matrix_world = to_blender(worlds[cam_node])
+    scene.camera = cobj
+
+    # ---- proxies: camera rays only
+    nproxy = 0
+    for obj in scene.objects:
+        if "area_light_proxy" in obj.keys():
+            nproxy += 1
+            obj.visible_diffuse = False
+            obj.visible_glossy = False
+            obj.visible_transmission = False
+            obj.visible_volume_scatter = False
+            obj.visible_shadow = False
+
+    # ---- EXT_lights_area
+    lights = g.get("extensions", {}).get("EXT_lights_area", {}).get("lights", [])
+    made = []
+    for i, m in worlds.items():
+        ext = g["nodes"][i].get("extensions", {}).get("EXT_lights_area")
+        if not ext:
+            continue
+        L = lights[ext["light"]]
+        kind = L.get("type", "rect")
+        size = float(L.get("size", 1.0))
+        color = L.get("color", [1.0, 1.0, 1.0])
+        nits = float(L.get("intensity", 1.0))
+        ld = bpy.data.lights.new(L.get("name", "area") + "_blender", type="AREA")
+        if kind == "disk":
+            ld.shape = "DISK"
+            ld.size = size
+            area = math.pi * size * size / 4.0
+        else:
+            aspect = float(L.get("rect", {}).get("aspect", 1.0))
+            ld.shape = "RECTANGLE"
+            ld.size = size * aspect
+            ld.size_y = size
+            area = size * aspect * size
+        ld.energy = 4.0 * nits * area
+        ld.color = color[:3]
+        ld.use_shadow = True
+        if hasattr(ld, "cycles"):
+            ld.cycles.max_bounces = 1024
+        lo = bpy.data.objects.new(ld.name, ld)
+        scene.collection.objects.link(lo)
+        lo.matrix_world = to_blender(m)
+        made.append({"node": g["nodes"][i].get("name"), "type": kind, "area": area,
+                     "power_W": ld.energy, "dir_blender": list(lo.matrix_world.to_3x3() @ mathutils.Vector((0, 0, -1)))})
+
+    # ---- environment
+    world = bpy.data.worlds.new("penumbra_world")
+    scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    bg = nt.nodes["Background"]
+    env = sf.get("environment")
+    if env is None:
+        env = {"uniform": [1.0, 1.0, 1.0]}  # penumbra-render's default: uniform radiance 1
+    intensity = float(env.get("intensity", 1.0))
+    if "file" in env:
+        tex = nt.nodes.new("ShaderNodeTexEnvironment")
+        tex.image = bpy.data.images.load(env["file"])
+        tex.image.colorspace_settings.name = "Linear"
+        tex.interpolation = "Linear"
+        mapping = nt.nodes.new("ShaderNodeMapping")
+        mapping.vector_type = "POINT"
+        # Penumbra looks up directions turned by -rotation about glTF +Y = Blender +Z.
+        mapping.inputs["Rotation"].default_value = (0.0, 0.0, -math.radians(float(env.get("rotation", 0.0))))
+        coord = nt.nodes.new("ShaderNodeTexCoord")
+        nt.links.new(coord.outputs["Generated"], mapping.inputs["Vector"])
+        nt.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+        nt.links.new(tex.outputs["Color"], bg.inputs["Color"])
+        bg.inputs["Strength"].default_value = intensity
+    else:
+        u = env.get("uniform", [1.0, 1.0, 1.0])
+        bg.inputs["Color"].default_value = (u[0], u[1], u[2], 1.0)
+        bg.inputs["Strength"].default_value = intensity
+    if sf.get("background", {}).get("show", True) is False:
+        print("warning: background.show = false is not reproduced (the world stays visible)")
+
+    # ---- colour management and output
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = a.threads
+    scene.render.film_transparent = False
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_mode = "RGB"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.render.filepath = os.path.abspath(a.out)
+    scene.render.use_file_extension = False
+
+    if a.engine == "cycles":
+        scene.render.engine = "CYCLES"
+        c = scene.cycles
+        c.device = "CPU"
+        c.samples = a.samples
+        c.use_adaptive_sampling = False
+        c.use_denoising = False
+        c.pixel_filter_type = "BOX"
+        c.filter_width = 1.0
+        c.seed = a.seed
+        # Light paths: defaults (12 bounces, indirect clamp 10, filter glossy 1) are kept
+        # except the glossy filter, which blurs highlights a reference should keep sharp.
+        c.blur_glossy = 0.0
+    else:
+        scene.render.engine = "BLENDER_EEVEE"
+        e = scene.eevee
+        e.taa_render_samples = a.samples
+        e.use_soft_shadows = True
+        e.shadow_cube_size = "1024"
+        e.shadow_cascade_size = "2048"
+        e.use_gtao = True
+        e.gtao_distance = float(sf.get("progressive", {}).get("occlusionDistance", 0.5))
+        e.use_ssr = True
+        e.use_ssr_refraction = False
+        scene.render.filter_size = 1.0
+
+    t0 = time.time()
+    bpy.ops.render.render(write_still=True)
+    t1 = time.time()
+    info = {"engine": a.engine, "samples": a.samples, "size": [w, h], "threads": a.threads,
+            "render_seconds": round(t1 - t0, 3), "scene": os.path.abspath(a.scene),
+            "camera_node": g["nodes"][cam_node].get("name"), "proxies_camera_only": nproxy,
+            "lights": made, "blender": bpy.app.version_string}
+    with open(os.path.splitext(os.path.abspath(a.out))[0] + ".json", "w") as f:
+        json.dump(info, f, indent=1)
+    print("PENUMBRA_REF", json.dumps(info))
+
+
+main()

@@ -1,0 +1,393 @@
+"""Evaluation of Penumbra against Cycles (reference) and Eevee (peer). Run through tools/evaluate."""
+import argparse
+import datetime
+import json
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+import numpy as np
+import OpenImageIO as oiio
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+# name -> (scene file, evaluation size, Cycles samples)
+SCENES = {
+    "cornell_box": ("assets/cornell_box/cornell_box.json", "320x320", 128),
+    "material_grid": ("assets/material_grid/material_grid.json", "400x300", 128),
+    "kitchen": ("assets/kitchen/kitchen.json", "480x270", 128),
+    "product": ("assets/product/product.json", "480x320", 128),
+    "dense": ("assets/dense/dense.json", "480x270", 128),
+}
+EEVEE_SAMPLES = 64
+
+
+# ---------------------------------------------------------------- images and metrics
+def read_rgb(path):
+    inp = oiio.ImageInput.open(path)
+    if inp is None:
+        raise RuntimeError("cannot read %s: %s" % (path, oiio.geterror()))
+    a = np.asarray(inp.read_image(format="float"), dtype=np.float64)
+    inp.close()
+    if a.ndim == 2:
+        a = a[..., None]
+    if a.shape[2] == 1:
+        a = np.repeat(a, 3, axis=2)
+    return a[..., :3]
+
+
+def write_png(path, rgb01):
+    a = (np.clip(rgb01, 0, 1) * 255 + 0.5).astype(np.uint8)
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(a.shape[1], a.shape[0], a.shape[2], "uint8"))
+    out.write_image(a)
+    out.close()
+
+
+def pbr_neutral(c):
+    """Khronos PBR Neutral tone mapper (the same as Penumbra's glsl)."""
+    start = 0.8 - 0.04
+    desat = 0.15
+    x = c.min(axis=-1, keepdims=True)
+    offset = np.where(x < 0.08, x - 6.25 * x * x, 0.04)
+    c = c - offset
+    peak = c.max(axis=-1, keepdims=True)
+    d = 1.0 - start
+    new_peak = 1.0 - d * d / (peak + d - start)
+    scaled = c * (new_peak / np.maximum(peak, 1e-12))
+    g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0)
+    compressed = scaled * (1.0 - g) + new_peak * g
+    return np.where(peak < start, c, compressed)
+
+
+def srgb_encode(x):
+    x = np.clip(x, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def display(lin, exposure):
+    return srgb_encode(pbr_neutral(lin * 2.0 ** exposure))
+
+
+def luma(rgb):
+    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def gaussian_filter(img, sigma=1.5, radius=5):
+    t = np.arange(-radius, radius + 1)
+    k = np.exp(-t * t / (2 * sigma * sigma))
+    k /= k.sum()
+    p = np.pad(img, radius, mode="reflect")
+    tmp = sum(k[i] * p[:, i:i + img.shape[1]] for i in range(len(k)))
+    return sum(k[i] * tmp[i:i + img.shape[0], :] for i in range(len(k)))
+
+
+def ssim(a, b):
+    """SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5, K1 0.01, K2 0.03, range 1)."""
+    c1, c2 = 0.01 ** 2, 0.03 ** 2
+    mu_a, mu_b = gaussian_filter(a), gaussian_filter(b)
+    saa = gaussian_filter(a * a) - mu_a ** 2
+    sbb = gaussian_filter(b * b) - mu_b ** 2
+    sab = gaussian_filter(a * b) - mu_a * mu_b
+    m = ((2 * mu_a * mu_b + c1) * (2 * sab + c2)) / ((mu_a ** 2 + mu_b ** 2 + c1) * (saa + sbb + c2))
+    return float(m.mean())
+
+
+def metrics(img, ref, exposure):
+    rmse = float(np.sqrt(np.mean((img - ref) ** 2)))
+    di, dr = display(img, exposure), display(ref, exposure)
+    mae = float(np.mean(np.abs(di - dr)))
+    return {"rmse": rmse, "mae_tm": mae, "ssim": ssim(luma(di), luma(dr))}
+
+
+# ---------------------------------------------------------------- rendering
+def run_penumbra(binary, scene, out, size, frames, seed=1):
+    cmd = [binary, scene, "-o", out, "--size", size, "--frames", str(frames), "--seed", str(seed), "-q"]
+    t0 = time.monotonic()
+    r = subprocess.run(["nice", "-n", "15"] + cmd, capture_output=True, text=True)
+    dt = time.monotonic() - t0
+    if r.returncode != 0:
+        raise RuntimeError("penumbra-render failed: %s\n%s" % (" ".join(cmd), r.stderr))
+    return dt
+
+
+def ref_command(scene, cache_dir, size, samples):
+    return "tools/reference/render %s %s --samples %d --eevee-samples %d --size %s" % (
+        scene, cache_dir, samples, EEVEE_SAMPLES, size)
+
+
+# ---------------------------------------------------------------- figures
+def plot_error_time(path, name, rows, cycles_s):
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.4))
+    pen = [r for r in rows if r["renderer"] == "penumbra"]
+    c2 = [r for r in rows if r["renderer"] == "cycles2"]
+    eev = [r for r in rows if r["renderer"] == "eevee"]
+    for ax, key, label in zip(axes, ("rmse", "mae_tm", "ssim"),
+                              ("RMSE, linear RGB", "MAE, tone-mapped sRGB", "SSIM, tone-mapped luminance")):
+        ax.plot([r["seconds"] for r in pen], [r[key] for r in pen], "o-", color="tab:orange", label="Penumbra")
+        for r in pen:
+            ax.annotate("%d" % r["frames"], (r["seconds"], r[key]), textcoords="offset points",
+                        xytext=(4, 4), fontsize=8)
+        if eev:
+            ax.plot([r["seconds"] for r in eev], [r[key] for r in eev], "s", color="tab:blue",
+                    label="Eevee %d" % EEVEE_SAMPLES)
+        if c2:
+            ax.axhline(c2[0][key], color="grey", ls=":", label="Cycles seed 2 (noise floor)")
+        ax.axvline(cycles_s, color="grey", ls="--", label="Cycles (reference) time")
+        ax.set_xscale("log")
+        if key != "ssim":
+            ax.set_yscale("log")
+        ax.set_xlabel("seconds (wall)")
+        ax.set_title(label, fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(name)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+
+
+def plot_strip(path, name, panels, diff, exposure):
+    n = len(panels) + 1
+    h, w = diff.shape
+    fig, axes = plt.subplots(1, n, figsize=(2.6 * n, 2.6 * h / w + 0.5))
+    for ax, (title, lin) in zip(axes, panels):
+        ax.imshow(display(lin, exposure), interpolation="nearest")
+        ax.set_title(title, fontsize=9)
+        ax.axis("off")
+    im = axes[-1].imshow(diff, cmap="inferno", vmin=0, vmax=max(0.05, float(np.percentile(diff, 99.5))),
+                         interpolation="nearest")
+    axes[-1].set_title("|%s - Cycles|, displayed" % panels[len(panels) - 3][0], fontsize=9)
+    axes[-1].axis("off")
+    fig.colorbar(im, ax=axes[-1], fraction=0.046, pad=0.02)
+    fig.suptitle(name, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+# ---------------------------------------------------------------- main
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--root", required=True)
+    ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--frames", default="1,16,64,128")
+    ap.add_argument("--render-refs", action="store_true", help="make missing Blender renders")
+    ap.add_argument("--render", default=None, help="penumbra-render binary")
+    ap.add_argument("--out", default="docs/evaluation")
+    ap.add_argument("--cache", default="eval-cache")
+    ap.add_argument("--report-only", action="store_true",
+                    help="rewrite README.md from the last run's results.json (no rendering)")
+    a = ap.parse_args()
+    os.chdir(a.root)
+    if a.report_only:
+        with open(os.path.join(a.out, "results.json")) as f:
+            saved = json.load(f)
+        write_report(a, saved["scenes"], saved["skipped"], saved["frames"], saved.get("when"))
+        return
+    binary = a.render or next((p for p in ("build/tools/render/penumbra-render",
+                                           "build-eval/tools/render/penumbra-render") if os.path.exists(p)), None)
+    if not binary:
+        sys.exit("evaluate: no penumbra-render; build it or pass --render")
+    frames = [int(f) for f in a.frames.split(",")]
+    os.makedirs(a.out, exist_ok=True)
+    results = {}
+    skipped = []
+    # one untimed warm-up so Mesa's shader cache is filled (timings are warm)
+    first = SCENES[a.scenes.split(",")[0]]
+    run_penumbra(binary, first[0], "/tmp/penumbra_eval_warmup.exr", "64x64", 1)
+    for name in a.scenes.split(","):
+        scene, size, samples = SCENES[name]
+        cache = os.path.join(a.cache, name)
+        cyc, eev = os.path.join(cache, "cycles.exr"), os.path.join(cache, "eevee.exr")
+        if not os.path.exists(cyc) or not os.path.exists(eev):
+            if a.render_refs:
+                subprocess.run(shlex.split(ref_command(scene, cache, size, samples)), check=True)
+            else:
+                skipped.append(name)
+                print("evaluate: %s: no cached reference in %s, skipped (--render-refs makes it)" % (name, cache))
+                continue
+        with open(scene) as f:
+            exposure = float(json.load(f).get("exposure", 0.0))
+        ref = read_rgb(cyc)
+        cinfo = json.load(open(os.path.join(cache, "cycles.json")))
+        einfo = json.load(open(os.path.join(cache, "eevee.json")))
+        rows = []
+        images = {}
+        for k in frames:
+            out = os.path.join(cache, "penumbra_f%04d.exr" % k)
+            dt = run_penumbra(binary, scene, out, size, k)
+            img = read_rgb(out)
+            if img.shape != ref.shape:
+                raise RuntimeError("%s: size mismatch %s vs %s" % (name, img.shape, ref.shape))
+            images[k] = img
+            rows.append(dict(renderer="penumbra", frames=k, seconds=dt, **metrics(img, ref, exposure)))
+            print("%s penumbra %4d frames %6.2f s  %s" % (name, k, dt, rows[-1]))
+        final = images[max(frames)]
+        for row in rows:  # convergence: distance to Penumbra's own longest render
+            row["rmse_self"] = float(np.sqrt(np.mean((images[row["frames"]] - final) ** 2)))
+        eimg = read_rgb(eev)
+        rows.append(dict(renderer="eevee", frames=einfo["samples"], seconds=einfo["render_seconds"],
+                         **metrics(eimg, ref, exposure)))
+        c2 = os.path.join(cache, "cycles_seed2.exr")
+        if os.path.exists(c2):  # Cycles' own noise: a second render with another seed
+            c2info = json.load(open(os.path.join(cache, "cycles_seed2.json")))
+            rows.append(dict(renderer="cycles2", frames=c2info["samples"], seconds=c2info["render_seconds"],
+                             **metrics(read_rgb(c2), ref, exposure)))
+        rows.append(dict(renderer="cycles", frames=cinfo["samples"], seconds=cinfo["render_seconds"],
+                         rmse=0.0, mae_tm=0.0, ssim=1.0))
+        results[name] = {"scene": scene, "size": size, "exposure": exposure, "rows": rows,
+                         "cycles": cinfo, "eevee": einfo,
+                         "ref_command": ref_command(scene, cache, size, cinfo["samples"]),
+                         "ref_mean": [float(v) for v in ref.mean(axis=(0, 1))],
+                         "pen_mean": [float(v) for v in images[max(frames)].mean(axis=(0, 1))],
+                         "eevee_mean": [float(v) for v in eimg.mean(axis=(0, 1))]}
+        plot_error_time(os.path.join(a.out, "%s_error_time.png" % name), name, rows, cinfo["render_seconds"])
+        strip_frames = [k for k in (1, 16, 128) if k in images]
+        panels = [("Penumbra %d frames" % k, images[k]) for k in strip_frames]
+        panels += [("Eevee %d samples" % einfo["samples"], eimg), ("Cycles %d spp" % cinfo["samples"], ref)]
+        last = images[max(frames)]
+        diff = luma(np.abs(display(last, exposure) - display(ref, exposure)))
+        plot_strip(os.path.join(a.out, "%s_strip.png" % name), name, panels, diff, exposure)
+    when = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M")
+    with open(os.path.join(a.out, "results.json"), "w") as f:
+        json.dump({"scenes": results, "skipped": skipped, "frames": frames, "when": when}, f, indent=1)
+    write_report(a, results, skipped, frames, when)
+
+
+def fmt_mean(v):
+    return "(%.3f, %.3f, %.3f)" % tuple(v)
+
+
+def write_report(a, results, skipped, frames, when):
+    L = []
+    L.append("# Evaluation: Penumbra against Cycles and Eevee")
+    L.append("")
+    L.append("Generated by `tools/evaluate` on %s UTC. Regenerate with one command from the cached "
+             "Blender renders in `%s/`:" % (when, a.cache))
+    L.append("")
+    L.append("```\ntools/evaluate            # --render-refs also makes missing references\n```")
+    L.append("")
+    L.append("**Setup.** Each scene is rendered at a reduced size (below) on this 2-core machine, shared "
+             "with other work (timings are noisy; everything ran under `nice -n 15`). Penumbra runs "
+             "`penumbra-render SCENE --size WxH --frames K` once per K (a K-frame budget is a "
+             "complete progressive render of K frames, not frame K of a longer one) on llvmpipe "
+             "(software GL, EGL surfaceless), writing linear EXR; its time is the wall time of the "
+             "whole process (start-up, scene and environment loading, prefiltering, shader set-up and "
+             "K frames), with the Mesa shader cache warm. Blender's times are `bpy.ops.render.render` "
+             "only (Blender start-up and glTF import excluded), 2 threads. The reference is Cycles "
+             "(CPU, no denoiser, box filter 1 px, default light paths: 12 bounces, indirect clamp 10); "
+             "the peer is Eevee at %d samples with soft shadows, GTAO (distance = the scene's "
+             "occlusion distance) and screen-space reflections, without a baked light cache (so no "
+             "indirect diffuse light)." % EEVEE_SAMPLES)
+    L.append("")
+    L.append("**Metrics** against the Cycles image: RMSE of linear RGB radiance; MAE of the displayed "
+             "images (scene exposure, Khronos PBR Neutral, sRGB; 0..1); SSIM (11x11 Gaussian window, "
+             "sigma 1.5) on the luminance of the displayed images. The Cycles image carries its own "
+             "Monte Carlo noise at the sample count used, so no renderer can reach RMSE 0 / SSIM 1. "
+             "The last column (Penumbra only) is the RMSE to Penumbra's own longest render: how far "
+             "it still is from what it converges to, apart from its bias.")
+    L.append("")
+    for name, r in results.items():
+        L.append("## %s (%s, exposure %+.1f EV)" % (name, r["size"], r["exposure"]))
+        L.append("")
+        L.append("| renderer | frames / samples | time (s) | RMSE linear | MAE tone-mapped | SSIM | RMSE to own %d-frame image |" % max(frames))
+        L.append("|---|---:|---:|---:|---:|---:|---:|")
+        for row in r["rows"]:
+            if row["renderer"] == "cycles":
+                L.append("| Cycles (reference) | %d spp | %.1f | - | - | - | |" % (row["frames"], row["seconds"]))
+            else:
+                L.append("| %s | %d | %.1f | %.4f | %.4f | %.3f | %s |" % (
+                    {"penumbra": "Penumbra", "eevee": "Eevee",
+                     "cycles2": "Cycles, other seed (noise floor)"}[row["renderer"]], row["frames"],
+                    row["seconds"], row["rmse"], row["mae_tm"], row["ssim"],
+                    "%.4f" % row["rmse_self"] if "rmse_self" in row else ""))
+        L.append("")
+        L.append("Mean radiance (linear RGB): Cycles %s, Penumbra %d frames %s, Eevee %s." % (
+            fmt_mean(r["ref_mean"]), max(frames), fmt_mean(r["pen_mean"]), fmt_mean(r["eevee_mean"])))
+        L.append("")
+        L.append("![%s error versus time](%s_error_time.png)" % (name, name))
+        L.append("")
+        L.append("![%s: Penumbra 1/16/128 frames, Eevee, Cycles, difference](%s_strip.png)" % (name, name))
+        L.append("")
+        L.append("Reference: `%s`" % r["ref_command"])
+        L.append("")
+    if skipped:
+        L.append("Not evaluated (no cached reference): %s." % ", ".join(skipped))
+        L.append("")
+    notes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "evaluation-notes.md")
+    if os.path.exists(notes):
+        L.append(open(notes).read().rstrip())
+        L.append("")
+    unit = unit_check(a)
+    if unit:
+        L.append(unit)
+    with open(os.path.join(a.out, "README.md"), "w") as f:
+        f.write("\n".join(L) + "\n")
+    print("evaluate: wrote %s" % os.path.join(a.out, "README.md"))
+
+
+def unit_check(a):
+    d = os.path.join(a.cache, "unit")
+    p, c = os.path.join(d, "penumbra.exr"), os.path.join(d, "cycles.exr")
+    if not (os.path.exists(p) and os.path.exists(c)):
+        return ""
+    def centre(path):
+        img = read_rgb(path)
+        h, w = img.shape[:2]
+        return float(img[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4].mean())
+    vp, vc = centre(p), centre(c)
+    ve = centre(os.path.join(d, "eevee.exr")) if os.path.exists(os.path.join(d, "eevee.exr")) else None
+    import math
+    A = B = 0.5
+    f = 4 * (A / math.sqrt(1 + A * A) * math.atan(B / math.sqrt(1 + A * A))
+             + B / math.sqrt(1 + B * B) * math.atan(A / math.sqrt(1 + B * B))) / (2 * math.pi)
+    s = ["## Light-unit check", "",
+         "A white plane (base colour 1, metallic 0, roughness 1) 1 m under a 1 x 1 m `EXT_lights_area` "
+         "rect light of L = 10 nits, black environment; radiance at the point under the light's centre "
+         "(mean of the 8 x 8 central pixels of a 64 x 64 image from a camera looking straight down):", "",
+         "| | radiance |", "|---|---:|",
+         "| Lambert, closed form (L x form factor %.5f) | %.4f |" % (f, 10 * f),
+         "| Penumbra (64 frames) | %.4f |" % vp,
+         "| Cycles (P = 4 L A = 40 W, 256 spp) | %.4f |" % vc]
+    if ve is not None:
+        s.append("| Eevee (64 samples) | %.4f |" % ve)
+    s += ["", "Penumbra / Cycles = %.4f. The glTF material is not pure Lambert in either renderer "
+          "(dielectric F0 = 0.04 GGX lobe at roughness 1 in both; Blender's Principled BSDF also uses a "
+          "Disney diffuse, brighter than Lambert at these angles), which accounts for the percent-level "
+          "difference; a unit error would be a factor of 4/pi = 1.27 or pi. Remake: "
+          "`/usr/bin/python3 tools/reference/make_unit_scene.py eval-cache/unit && "
+          "build/tools/render/penumbra-render eval-cache/unit/unit.json -o eval-cache/unit/penumbra.exr && "
+          "tools/reference/render eval-cache/unit/unit.json eval-cache/unit --samples 256`." % (vp / vc), ""]
+    sky = [os.path.join(d, "sky_%s.exr" % k) for k in ("penumbra", "cycles", "eevee")]
+    if all(os.path.exists(x) for x in sky):
+        env = read_rgb(os.path.join(a.root, "assets", "env", "studio_sky.hdr"))
+        H, W = env.shape[:2]
+        el = np.pi * (0.5 - (np.arange(H) + 0.5) / H)
+        wgt = np.maximum(np.sin(el), 0) * np.cos(el) * (np.pi / H) * (2 * np.pi / W)
+        lam = (env * wgt[:, None, None]).sum(axis=(0, 1)) / np.pi
+        def centre3(path):
+            img = read_rgb(path)
+            h, w = img.shape[:2]
+            return img[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4].mean(axis=(0, 1))
+        vals = [centre3(x) for x in sky]
+        f3 = lambda v: "(%.3f, %.3f, %.3f)" % tuple(v)
+        s += ["Environment energy: the same plane with the light at 0 nits under `studio_sky.hdr` "
+              "(`eval-cache/unit/sky.json`), radiance (RGB) at the centre:", "",
+              "| | radiance |", "|---|---:|",
+              "| Lambert, closed form (irradiance of the panorama / pi) | %s |" % f3(lam),
+              "| Penumbra (64 frames) | %s |" % f3(vals[0]),
+              "| Cycles (256 spp) | %s |" % f3(vals[1]),
+              "| Eevee (64 samples) | %s |" % f3(vals[2]), "",
+              "Remake: `build/tools/render/penumbra-render eval-cache/unit/sky.json -o "
+              "eval-cache/unit/sky_penumbra.exr && tools/reference/render eval-cache/unit/sky.json "
+              "eval-cache/unit --samples 256 --only cycles --name sky_cycles && tools/reference/render "
+              "eval-cache/unit/sky.json eval-cache/unit --only eevee --name sky_eevee`.", ""]
+    return "\n".join(s)
+
+
+if __name__ == "__main__":
+    main()
