@@ -4,61 +4,19 @@
 // of hanging it. The page's screenshot and result go to build-web/test-output/.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { createServer } from 'node:http';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, statSync,
-         writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { extname, join, normalize, resolve, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { existsSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { closeServer, dist, launch, outDir, recordConsole, serve, withTimeout } from './harness.mjs';
 
-const root = resolve(fileURLToPath(new URL('../..', import.meta.url)));
-const dist = resolve(process.env.PENUMBRA_WEB_DIST || join(root, 'web/dist'));
-const outDir = resolve(process.env.PENUMBRA_TEST_OUTPUT || join(root, 'build-web/test-output'));
 const shot = join(outDir, 'smoke.png');
-const chromiumPath = process.env.PENUMBRA_CHROMIUM || '/usr/lib/chromium/chromium';
 // Worst case: load + result + screenshot + close bounds (60 s), plus playwright's own 30 s
-// graceful-close-then-kill of a wedged browser, stays under tools/test-web's outer 115 s kill.
+// graceful-close-then-kill of a wedged browser, stays under tools/test-web's outer kill.
 // A healthy run takes about 4 s.
 const LAUNCH_MS = 20_000;
 const LOAD_MS = 15_000;
 const RESULT_MS = 25_000;
 
-const MIME = {
-  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript', '.mjs': 'text/javascript',
-  '.wasm': 'application/wasm', '.json': 'application/json', '.png': 'image/png',
-};
-
-// Static file server for `dist`, on a free port of 127.0.0.1 only.
-function serve(dir) {
-  const server = createServer((req, res) => {
-    let path = '';
-    try {
-      path = normalize(join(dir, decodeURIComponent(new URL(req.url, 'http://x').pathname)));
-    } catch {}  // malformed URL: answered 404 below
-    if (!path.startsWith(dir + sep) || !statSync(path, { throwIfNoEntry: false })?.isFile()) {
-      res.writeHead(404).end('not found');
-      return;
-    }
-    res.writeHead(200, { 'Content-Type': MIME[extname(path)] || 'application/octet-stream',
-                         'Cache-Control': 'no-store' });
-    res.end(readFileSync(path));
-  });
-  return new Promise((ok, fail) => {
-    server.once('error', fail);
-    server.listen(0, '127.0.0.1', () => ok(server));
-  });
-}
-
-function withTimeout(promise, ms, what) {
-  let timer;
-  const timeout = new Promise((_, fail) => {
-    timer = setTimeout(() => fail(new Error(`${what}: no answer in ${ms} ms`)), ms);
-  });
-  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
-}
-
-let server, context, profile, page;
+let server, browser, page;
 let result;           // window.smokeResult, or undefined when the page never produced one
 let setupError;       // why not, with the page's console output
 const consoleLines = [];
@@ -71,20 +29,11 @@ before(async () => {
     return;
   }
   server = await serve(dist);
-  profile = mkdtempSync(join(tmpdir(), 'penumbra-chromium-'));
   try {
-    context = await withTimeout(chromium.launchPersistentContext(profile, {
-      executablePath: chromiumPath,
-      headless: true,
-      timeout: LAUNCH_MS,
-      viewport: { width: 400, height: 420 },
-      args: ['--no-sandbox', '--disable-background-networking', '--disable-component-update',
-             '--disable-sync', '--no-first-run', '--enable-unsafe-swiftshader',
-             '--use-angle=swiftshader'],
-    }), LAUNCH_MS + 2_000, 'launch Chromium');
-    page = context.pages()[0] || (await withTimeout(context.newPage(), 5_000, 'new page'));
-    page.on('console', (m) => consoleLines.push(`[${m.type()}] ${m.text()}`));
-    page.on('pageerror', (e) => consoleLines.push(`[pageerror] ${e.message}`));
+    browser = await launch({ viewport: { width: 400, height: 420 }, launchMs: LAUNCH_MS });
+    page = browser.context.pages()[0] ||
+           (await withTimeout(browser.context.newPage(), 5_000, 'new page'));
+    recordConsole(page, consoleLines);
     const url = `http://127.0.0.1:${server.address().port}/smoke/index.html`;
     await page.goto(url, { timeout: LOAD_MS });
     await page.waitForFunction(() => window.smokeResult !== undefined, null, { timeout: RESULT_MS });
@@ -100,11 +49,8 @@ before(async () => {
 }, { timeout: 95_000 });
 
 after(async () => {
-  // A wedged browser must not keep the test alive: give close() a bound, then move on
-  // (playwright kills the browser process when node exits).
-  if (context) await withTimeout(context.close(), 10_000, 'browser close').catch(() => {});
-  if (server) { server.closeAllConnections(); server.close(); }
-  if (profile) rmSync(profile, { recursive: true, force: true });
+  if (browser) await browser.close();
+  closeServer(server);
 });
 
 // The page's result for one run, or a failure that says why there is none.

@@ -3,8 +3,10 @@
 #pragma once
 
 #ifdef __EMSCRIPTEN__
-#include <GLES2/gl2ext.h>
+// gl2ext.h needs gl3.h's types: keep this order (separate blocks so clang-format keeps it).
 #include <GLES3/gl3.h>
+
+#include <GLES2/gl2ext.h>
 #else
 #include <glad/gles2.h>
 #endif

@@ -23,6 +23,16 @@
 #include "ibl/sampling.h"
 #include "penumbra/ibl.h"
 
+// std::bit_cast is missing from the libc++ of Debian's Emscripten 3.1.6: a memcpy does the
+// same and compiles to a register move.
+template <class To, class From>
+inline To bitCast(const From& from) {
+  static_assert(sizeof(To) == sizeof(From), "bitCast needs equal sizes");
+  To to;
+  std::memcpy(&to, &from, sizeof(To));
+  return to;
+}
+
 namespace penumbra::ibl {
 namespace {
 
@@ -193,10 +203,10 @@ using I4 = int32_t __attribute__((vector_size(16)));
 
 // log2 for positive normal floats, four at a time, within 0.01 (as fastLog2).
 inline F4 fastLog2(F4 x) {
-  const I4 bits = std::bit_cast<I4>(x);
+  const I4 bits = bitCast<I4>(x);
   const F4 exponent = __builtin_convertvector((bits >> 23) - 127, F4);
   const I4 mantissaBits = (bits & 0x007FFFFF) | 0x3F800000;
-  const F4 m = std::bit_cast<F4>(mantissaBits);  // in [1, 2)
+  const F4 m = bitCast<F4>(mantissaBits);  // in [1, 2)
   return exponent + (-0.34484843f * m + 2.02466578f) * m - 0.67487759f;
 }
 
@@ -213,12 +223,12 @@ inline F4 clampF4(F4 v, float lo, float hi) {
 inline F4 filteredLookup4(const std::vector<PaddedLevel>& pyramid, F4 dx, F4 dy, F4 dz, F4 lodBase,
                           F4 weight) {
   const I4 signMask = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
-  const I4 ix = std::bit_cast<I4>(dx) & signMask;
-  const I4 iy = std::bit_cast<I4>(dy) & signMask;
-  const I4 iz = std::bit_cast<I4>(dz) & signMask;
-  const F4 ax = std::bit_cast<F4>(ix);
-  const F4 ay = std::bit_cast<F4>(iy);
-  const F4 az = std::bit_cast<F4>(iz);
+  const I4 ix = bitCast<I4>(dx) & signMask;
+  const I4 iy = bitCast<I4>(dy) & signMask;
+  const I4 iz = bitCast<I4>(dz) & signMask;
+  const F4 ax = bitCast<F4>(ix);
+  const F4 ay = bitCast<F4>(iy);
+  const F4 az = bitCast<F4>(iz);
   const I4 xMajor = (ax >= ay) & (ax >= az);
   const I4 yMajor = ~xMajor & (ay >= az);
   const F4 ma = xMajor ? ax : (yMajor ? ay : az);

@@ -107,6 +107,11 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
     gs->materials_.push_back(std::move(gm));
   }
   gs->materials_.push_back(GpuMaterial{});
+  auto fallback = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
+  if (!fallback) return fallback.error();
+  const uint8_t white[4] = {255, 255, 255, 255};
+  fallback->upload(0, white, gl::DataType::UInt8);
+  gs->fallback_ = std::move(*fallback);
   const int defaultMaterial = static_cast<int>(gs->materials_.size()) - 1;
 
   for (const Instance& inst : scene.instances) {
@@ -199,6 +204,8 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
       textureMask |= 1 << slot;
       if (refs[slot]->texCoord == 1) texCoordMask |= 1 << slot;
       gm.textures[slot]->bind(slot);
+    } else {
+      fallback_.bind(slot);
     }
   }
   program.set("uTextureMask", textureMask);

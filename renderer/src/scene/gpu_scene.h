@@ -64,6 +64,9 @@ class GpuScene {
   std::vector<DrawItem> opaque_;
   std::vector<DrawItem> blended_;
   Bounds bounds_;
+  // Bound to the material units a material leaves empty: WebGL rejects a draw whose sampler
+  // units still hold a texture attached to the framebuffer being drawn into.
+  gl::Texture2D fallback_;
 };
 
 }  // namespace penumbra

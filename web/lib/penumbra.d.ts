@@ -1,0 +1,148 @@
+// Types of Penumbra's JavaScript API (penumbra.mjs). docs/web.md describes the behaviour.
+
+export declare const version: string;
+
+/** Every rejected promise of the API carries one: `message` is the one-line C++ message. */
+export declare class PenumbraError extends Error {
+  name: 'PenumbraError';
+}
+
+export type ToneMapper = 'pbr-neutral' | 'aces' | 'reinhard' | 'none';
+
+/** Everything setSettings() accepts; all optional. */
+export interface Settings {
+  /** m, the number of intermediate frames to accumulate (1..4096). */
+  frames?: number;
+  /** f_d: direct-light samples start at frame floor(m * fd) (0..1). */
+  fd?: number;
+  /** d_occ, the screen-space occlusion distance in scene units (metres). */
+  occlusionDistance?: number;
+  /** Exposure in EV: the image is scaled by 2^exposure before tone mapping. */
+  exposure?: number;
+  toneMapper?: ToneMapper;
+  /** One-bounce screen-space indirect light. */
+  screenSpaceIndirect?: boolean;
+  /** Shadow-map samples per area light; 0 = automatic. */
+  lightSamples?: number;
+  shadowMapSize?: number;
+  /** Rotates every sample sequence. */
+  seed?: number;
+  environmentIntensity?: number;
+  /** Degrees about +Y. */
+  environmentRotation?: number;
+  showBackground?: boolean;
+  /** 0 = sharp, 1 = the roughest prefiltered mip. */
+  backgroundBlur?: number;
+  /** Milliseconds per animation frame spent on intermediate frames (default 12). */
+  budgetMs?: number;
+  /** Render resolution / canvas resolution when the camera is still (0.1..2, default 1). */
+  resolutionScale?: number;
+}
+
+/** The full set in effect (setSettings() resolves to it). */
+export type EffectiveSettings = Required<Settings>;
+
+export interface CreateOptions extends Settings {
+  /** Accumulate in RGBA16F even where RGBA32F is renderable (the weak-device path). */
+  forceHalfFloat?: boolean;
+  /** Orbit / pan / zoom with mouse and touch (default true). */
+  controls?: boolean;
+  /** Keep the drawing buffer at the canvas's CSS size x pixelRatio (default true). */
+  autoResize?: boolean;
+  /** Default min(devicePixelRatio, 2). */
+  pixelRatio?: number;
+  /** Lowest resolution scale used while the camera moves (default 0.25). */
+  minMotionScale?: number;
+  /** The camera counts as still this long after the last change (ms, default 200). */
+  stillMs?: number;
+}
+
+export type Vec3 = [number, number, number];
+export type ByteSource = ArrayBuffer | ArrayBufferView | Blob;
+export type Source = string | URL | ByteSource;
+
+export interface Bounds { min: Vec3; max: Vec3; }
+
+export interface SceneInfo {
+  name: string;
+  triangles: number;
+  lights: number;
+  cameras: string[];
+  warnings: string[];
+  bounds: Bounds;
+  environment: string;
+}
+
+export interface CameraSpec {
+  eye: Vec3;
+  target: Vec3;
+  /** Default [0, 1, 0]. */
+  up?: Vec3;
+  /** Vertical field of view in radians; default: the current one. */
+  yfov?: number;
+}
+
+export interface ViewerState {
+  frame: number;
+  total: number;
+  converged: boolean;
+  /** Milliseconds of the last intermediate frame, and of the last frame 1. */
+  frameMs: number;
+  frame1Ms: number;
+  stepsPerTick: number;
+  convergedMs: number;
+  lost: boolean;
+  moving: boolean;
+  renderWidth: number;
+  renderHeight: number;
+  canvasWidth: number;
+  canvasHeight: number;
+  motionScale: number;
+}
+
+export interface BenchmarkResult {
+  frames: number;
+  width: number;
+  height: number;
+  /** Back to back, one read-back at the end (throughput). */
+  msPerFrame: number;
+  /** With a read-back after every frame (what the time budget sees). */
+  msPerFrameSynced: number;
+  totalMs: number;
+}
+
+export interface ViewerEvents {
+  progress: { frame: number; total: number };
+  converged: { frame: number; total: number; milliseconds: number };
+  error: Error;
+  contextlost: Record<string, never>;
+  contextrestored: Record<string, never>;
+}
+
+export declare class Viewer {
+  static create(canvas: HTMLCanvasElement, options?: CreateOptions): Promise<Viewer>;
+  readonly canvas: HTMLCanvasElement;
+  readonly info: { context: string; report: string; scene: SceneInfo | null };
+  readonly state: ViewerState;
+  readonly settings: EffectiveSettings;
+  /** A scene file (.json), .gltf or .glb. `resources` supplies a .gltf's external files by name. */
+  loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
+  /** Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), or [r, g, b]. */
+  setEnvironment(source: Source | Vec3, options?: { name?: string }): Promise<void>;
+  /** A look-at camera, or 'reset' for the scene's own camera. */
+  setCamera(camera: CameraSpec | 'reset'): Promise<void>;
+  setSettings(changes: Settings): Promise<EffectiveSettings>;
+  restart(): void;
+  on<K extends keyof ViewerEvents>(event: K, handler: (detail: ViewerEvents[K]) => void): () => void;
+  off<K extends keyof ViewerEvents>(event: K, handler: (detail: ViewerEvents[K]) => void): void;
+  /** The canvas as PNG. */
+  screenshot(): Promise<Blob>;
+  benchmark(options?: { frames?: number }): Promise<BenchmarkResult>;
+  dispose(): void;
+}
+
+export declare const Penumbra: {
+  create(canvas: HTMLCanvasElement, options?: CreateOptions): Promise<Viewer>;
+  version: string;
+};
+export default Penumbra;

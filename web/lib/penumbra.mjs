@@ -1,0 +1,537 @@
+// Penumbra's JavaScript API: a progressive physically-based viewer on a <canvas>.
+//
+//   import Penumbra from './lib/penumbra.mjs';
+//   const viewer = await Penumbra.create(canvas, { budgetMs: 12 });
+//   await viewer.loadScene('assets/cornell_box/cornell_box.json');
+//   viewer.on('progress', ({ frame, total }) => ...);
+//
+// The wasm module (penumbra_viewer.js/.wasm, built from the same C++ and GLSL as the native
+// renderer) draws one cheap intermediate frame per step and accumulates. This file owns the
+// frame loop: on each requestAnimationFrame it runs as many steps as fit the time budget,
+// timing each with a 1-pixel read-back (glFinish does not block in WebGL), then tone-maps the
+// accumulation into the canvas. A camera or settings change restarts accumulation at frame 1
+// (environment only, cheap); while the camera moves and frame 1 alone exceeds the budget, the
+// render resolution drops, and it comes back once the camera is still.
+//
+// Every method that can fail returns a promise that rejects with a PenumbraError whose message
+// is the one-line C++ message; nothing throws out of the frame loop or the event handlers
+// (failures there go to the 'error' event). docs/web.md documents the API.
+import createPenumbraViewerModule from './penumbra_viewer.js';
+import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
+import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
+
+export { PenumbraError };
+export const version = '0.1.0';
+
+const DEFAULTS = {
+  budgetMs: 12,          // time per animation frame spent on intermediate frames
+  resolutionScale: 1,    // render resolution / canvas resolution when the camera is still
+  minMotionScale: 0.25,  // the lowest resolution scale used while the camera moves
+  stillMs: 200,          // the camera counts as still this long after the last change
+  forceHalfFloat: false, // accumulate in RGBA16F (the weak-device path) even where RGBA32F works
+  controls: true,        // orbit/pan/zoom with mouse and touch
+  autoResize: true,      // keep the canvas's drawing buffer at its CSS size x pixelRatio
+  pixelRatio: undefined, // default: min(devicePixelRatio, 2)
+};
+// Settings the wasm side knows (viewer_settings.cpp); the rest of setSettings() is JS-side.
+const WASM_SETTINGS = new Set(['exposure', 'toneMapper', 'environmentIntensity',
+  'environmentRotation', 'showBackground', 'backgroundBlur', 'frames', 'fd',
+  'occlusionDistance', 'lightSamples', 'shadowMapSize', 'screenSpaceIndirect', 'seed']);
+const JS_SETTINGS = new Set(['budgetMs', 'resolutionScale']);
+
+let canvasIds = 0;
+let stagingIds = 0;
+
+export class Viewer {
+  #mod; #pv; #canvas; #opts; #listeners = new Map();
+  #overrides = {};             // wasm settings the user set (re-applied after loads/restores)
+  #jsSettings;                 // budgetMs, resolutionScale
+  #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
+  #motionScale = 1; #renderSize = [0, 0]; #needsPresent = true;
+  #raf = 0; #running = false; #disposed = false; #lost = false; #dead = null;
+  #sceneInfo = null; #report = ''; #context = '';
+  #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, stepsPerTick: 0,
+             restartedAt: 0, convergedMs: 0 };
+
+  static async create(canvas, options = {}) {
+    if (!canvas || typeof canvas.getContext !== 'function') {
+      throw new PenumbraError('Penumbra.create needs a <canvas> element');
+    }
+    // An option given as undefined means "the default", as it would if left out.
+    const given = Object.fromEntries(Object.entries(options).filter(([, v]) => v !== undefined));
+    const opts = { ...DEFAULTS, ...given };
+    let aborted = null;
+    let mod;
+    try {
+      mod = await createPenumbraViewerModule({
+        print: (t) => console.log(`[penumbra] ${t}`),
+        printErr: (t) => console.warn(`[penumbra] ${t}`),
+        onAbort: (what) => { aborted = String(what); if (viewer) viewer.#abort(aborted); },
+      });
+    } catch (e) {
+      throw new PenumbraError(`cannot load the Penumbra module: ${e && e.message ? e.message : e}`);
+    }
+    if (!canvas.id) canvas.id = `penumbra-canvas-${++canvasIds}`;
+    var viewer = new Viewer(mod, canvas, opts);
+    if (aborted) throw new PenumbraError(`the Penumbra module aborted: ${aborted}`);
+    const created = viewer.#call('pv_create', `#${CSS.escape(canvas.id)}`, opts.forceHalfFloat ? 1 : 0);
+    viewer.#context = created.context;
+    viewer.#report = created.report;
+    viewer.#attach();
+    const initial = {};
+    for (const [k, v] of Object.entries(given)) {
+      if (WASM_SETTINGS.has(k) || JS_SETTINGS.has(k)) initial[k] = v;
+    }
+    try {
+      await viewer.setSettings(initial);
+    } catch (e) {
+      viewer.dispose();  // a bad option must not leave a context and listeners behind
+      throw e;
+    }
+    viewer.#running = true;
+    viewer.#raf = requestAnimationFrame(viewer.#tick);
+    return viewer;
+  }
+
+  constructor(mod, canvas, opts) {
+    this.#mod = mod;
+    this.#canvas = canvas;
+    this.#opts = opts;
+    this.#jsSettings = { budgetMs: opts.budgetMs, resolutionScale: opts.resolutionScale };
+    const s = 'string', n = 'number';
+    const w = (name, ret, args) => mod.cwrap(name, ret, args);
+    this.#pv = {
+      pv_create: w('pv_create', s, [s, n]), pv_destroy: w('pv_destroy', null, []),
+      pv_alloc: w('pv_alloc', n, [n]), pv_free: w('pv_free', null, [n]),
+      pv_write_file: w('pv_write_file', s, [s, n, n]), pv_remove_tree: w('pv_remove_tree', null, [s]),
+      pv_load_scene: w('pv_load_scene', s, [s, s]),
+      pv_set_environment: w('pv_set_environment', s, [s, s]),
+      pv_set_uniform_environment: w('pv_set_uniform_environment', s, [n, n, n]),
+      pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
+      pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),
+      pv_reset_camera: w('pv_reset_camera', s, []),
+      pv_step: w('pv_step', n, []), pv_last_error: w('pv_last_error', s, []),
+      pv_sync: w('pv_sync', null, []), pv_present: w('pv_present', s, [n, n]),
+      pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
+      pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
+      pv_context_lost: w('pv_context_lost', null, []),
+      pv_context_restored: w('pv_context_restored', s, []),
+    };
+  }
+
+  // ---- public API ---------------------------------------------------------------------------
+
+  get canvas() { return this.#canvas; }
+  // The WebGL context description and the capability report (accumulation format etc.).
+  get info() { return { context: this.#context, report: this.#report, scene: this.#sceneInfo }; }
+  // A snapshot for progress displays and tests.
+  get state() {
+    return { ...this.#stats, lost: this.#lost, renderWidth: this.#renderSize[0],
+             renderHeight: this.#renderSize[1], canvasWidth: this.#canvas.width,
+             canvasHeight: this.#canvas.height, motionScale: this.#motionScale,
+             moving: this.#isMoving(performance.now()) };
+  }
+  get settings() {
+    const s = this.#lost ? { ...this.#overrides } : this.#call('pv_get_state').settings;
+    delete s.width;
+    delete s.height;
+    // Values pass through float32 in wasm: show 0.3, not 0.30000001192092896.
+    for (const [k, v] of Object.entries(s)) {
+      if (typeof v === 'number' && !Number.isInteger(v)) s[k] = Number(v.toPrecision(7));
+    }
+    return { ...s, ...this.#jsSettings };
+  }
+
+  // Loads a scene file (.json), a .gltf or a .glb from a URL, bytes or a File. `resources`
+  // maps file names to bytes for a .gltf's external files when they do not come from a URL.
+  async loadScene(source, { name, resources } = {}) {
+    this.#check();
+    let main;
+    if (typeof source === 'string' || source instanceof URL) {
+      const url = new URL(String(source), location.href).href;
+      main = { url, bytes: await fetchBytes(url), name: name || sourceName(url, 'scene') };
+    } else {
+      main = { bytes: await toBytes(source), name: name || sourceName(source, 'scene') };
+    }
+    const staged = await gatherScene(main, resources || {});
+    this.#check();
+    const root = `/stage/${++stagingIds}`;
+    let info;
+    try {
+      for (const f of staged.files) this.#writeFile(`${root}/${f.path}`, f.bytes);
+      const cut = staged.mainPath.lastIndexOf('/');
+      info = this.#call('pv_load_scene', `${root}/${staged.mainPath.slice(0, cut)}`,
+                        staged.mainPath.slice(cut + 1));
+    } finally {
+      this.#pv.pv_remove_tree(root);
+    }
+    this.#sceneInfo = { name: main.name, triangles: info.triangles, lights: info.lights,
+                        cameras: info.cameras, warnings: info.warnings, bounds: info.bounds,
+                        environment: info.environment };
+    for (const w of info.warnings || []) console.warn(`[penumbra] ${main.name}: ${w}`);
+    // The user's own settings win over the scene file's.
+    this.#call('pv_set_settings', JSON.stringify(this.#overrides));
+    this.#orbit = OrbitCamera.fromCamera(info.camera, info.bounds);
+    this.#cameraDirty = false;
+    this.#restarted();
+    return this.#sceneInfo;
+  }
+
+  // A packed environment (.hdr from penumbra-prefilter) or an equirectangular panorama
+  // (.hdr/.png, prefiltered on load at a small size), from a URL, bytes or a File; or [r, g, b]
+  // for a uniform environment.
+  async setEnvironment(source, { name } = {}) {
+    this.#check();
+    if (Array.isArray(source)) {
+      if (source.length !== 3 || !source.every(Number.isFinite)) {
+        throw new PenumbraError('a uniform environment is [r, g, b]');
+      }
+      this.#call('pv_set_uniform_environment', ...source);
+      this.#restarted();
+      return;
+    }
+    let bytes;
+    if (typeof source === 'string' || source instanceof URL) {
+      bytes = await fetchBytes(new URL(String(source), location.href).href);
+    } else {
+      bytes = await toBytes(source);
+    }
+    this.#check();
+    const file = (name || sourceName(source, 'environment.hdr')).replace(/[^\w.+-]/g, '_');
+    const root = `/stage/${++stagingIds}`;
+    try {
+      this.#writeFile(`${root}/${file}`, bytes);
+      const state = this.#call('pv_set_environment', root, file);
+      if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
+    } finally {
+      this.#pv.pv_remove_tree(root);
+    }
+    this.#restarted();
+  }
+
+  // {eye, target, up?, yfov?} in scene units (yfov in radians), or 'reset' for the scene's own.
+  async setCamera(camera) {
+    this.#check();
+    if (camera === 'reset') {
+      const cam = this.#call('pv_reset_camera');
+      if (this.#sceneInfo) this.#orbit = OrbitCamera.fromCamera(cam, this.#sceneInfo.bounds);
+      this.#restarted();
+      return;
+    }
+    const v3 = (v, what) => {
+      if (!Array.isArray(v) || v.length !== 3 || !v.every(Number.isFinite)) {
+        throw new PenumbraError(`camera: '${what}' must be [x, y, z]`);
+      }
+      return v;
+    };
+    const eye = v3(camera && camera.eye, 'eye'), target = v3(camera.target, 'target');
+    const up = camera.up ? v3(camera.up, 'up') : [0, 1, 0];
+    const yfov = camera.yfov ?? (this.#orbit ? this.#orbit.yfov : 0.8);
+    this.#call('pv_set_camera', ...eye, ...target, ...up, yfov);
+    if (!this.#orbit) this.#orbit = new OrbitCamera();
+    this.#orbit.target = [...target];
+    this.#orbit.yfov = yfov;
+    this.#orbit.setEye(eye);
+    this.#restarted();
+  }
+
+  // Any of: frames, fd, occlusionDistance, exposure, toneMapper ('pbr-neutral', 'aces',
+  // 'reinhard', 'none'), screenSpaceIndirect, lightSamples, shadowMapSize, seed,
+  // environmentIntensity, environmentRotation, showBackground, backgroundBlur, budgetMs,
+  // resolutionScale. Resolves to the full settings.
+  async setSettings(changes = {}) {
+    this.#check();
+    const wasm = {};
+    const js = {};
+    for (const [k, v] of Object.entries(changes)) {
+      if (v === undefined) continue;
+      if (WASM_SETTINGS.has(k)) wasm[k] = v;
+      else if (JS_SETTINGS.has(k)) js[k] = v;
+      else throw new PenumbraError(`unknown setting '${k}'`);
+    }
+    if ('budgetMs' in js && !(js.budgetMs > 0 && js.budgetMs <= 1000)) {
+      throw new PenumbraError('setting \'budgetMs\' must be in (0, 1000]');
+    }
+    if ('resolutionScale' in js && !(js.resolutionScale >= 0.1 && js.resolutionScale <= 2)) {
+      throw new PenumbraError('setting \'resolutionScale\' must be in [0.1, 2]');
+    }
+    if (!this.#lost && Object.keys(wasm).length) this.#call('pv_set_settings', JSON.stringify(wasm));
+    Object.assign(this.#overrides, wasm);
+    Object.assign(this.#jsSettings, js);
+    this.#needsPresent = true;  // exposure and tone mapping change the display without a restart
+    return this.#lost ? { ...this.#overrides, ...this.#jsSettings } : this.settings;
+  }
+
+  // Restarts accumulation at frame 1.
+  restart() {
+    if (this.#usable()) { this.#pv.pv_restart(); this.#restarted(); }
+  }
+
+  on(event, handler) {
+    if (!this.#listeners.has(event)) this.#listeners.set(event, new Set());
+    this.#listeners.get(event).add(handler);
+    return () => this.off(event, handler);
+  }
+  off(event, handler) { this.#listeners.get(event)?.delete(handler); }
+
+  // The canvas as a PNG Blob (the context keeps its drawing buffer, so this is what is shown).
+  screenshot() {
+    return new Promise((resolve, reject) => {
+      this.#canvas.toBlob((b) => (b ? resolve(b) : reject(new PenumbraError('screenshot failed'))),
+                          'image/png');
+    });
+  }
+
+  // Milliseconds per intermediate frame at the current size: one warm-up accumulation (shaders
+  // compile on first use), then `frames` steps back to back with one read-back at the end
+  // (throughput, as penumbra-render measures it), and the same with a read-back after every
+  // step (latency, what the time budget sees). The frame loop pauses meanwhile.
+  async benchmark({ frames } = {}) {
+    this.#check();
+    const wasRunning = this.#running;
+    this.#running = false;
+    try {
+      const m = frames || this.#pv.pv_total_frames();
+      const run = (syncEach) => {
+        this.#pv.pv_restart();
+        this.#pv.pv_sync();
+        const t0 = performance.now();
+        let n = 0;
+        for (let f = this.#pv.pv_step(); f > 0; f = this.#pv.pv_step()) {
+          if (f < 0) break;
+          if (syncEach) this.#pv.pv_sync();
+          if (++n >= m) break;
+        }
+        this.#pv.pv_sync();
+        if (n === 0) throw new PenumbraError(this.#lastError());
+        return { frames: n, ms: performance.now() - t0 };
+      };
+      run(false);  // warm-up
+      const a = run(false);
+      const b = run(true);
+      this.#restarted();
+      return { frames: a.frames, width: this.#renderSize[0], height: this.#renderSize[1],
+               msPerFrame: a.ms / a.frames, msPerFrameSynced: b.ms / b.frames, totalMs: a.ms };
+    } finally {
+      this.#running = wasRunning;
+    }
+  }
+
+  dispose() {
+    if (this.#disposed) return;
+    this.#disposed = true;
+    this.#running = false;
+    cancelAnimationFrame(this.#raf);
+    this.#controls?.detach();
+    this.#canvas.removeEventListener('webglcontextlost', this.#onLost);
+    this.#canvas.removeEventListener('webglcontextrestored', this.#onRestored);
+    try { this.#pv.pv_destroy(); } catch { /* an aborted module has nothing left to free */ }
+    this.#listeners.clear();
+  }
+
+  // ---- internals ----------------------------------------------------------------------------
+
+  #attach() {
+    this.#canvas.addEventListener('webglcontextlost', this.#onLost);
+    this.#canvas.addEventListener('webglcontextrestored', this.#onRestored);
+    if (this.#opts.controls) {
+      this.#controls = attachOrbitControls(this.#canvas, {
+        // Proxy so the controls always act on the current scene's orbit camera.
+        orbit: (...a) => this.#orbit?.orbit(...a), pan: (...a) => this.#orbit?.pan(...a),
+        zoom: (...a) => this.#orbit?.zoom(...a),
+      }, {
+        onChange: () => { if (this.#orbit) { this.#cameraDirty = true; this.#lastChange = performance.now(); } },
+        onReset: () => { if (this.#sceneInfo) this.setCamera('reset').catch((e) => this.#emitError(e)); },
+      });
+    }
+  }
+
+  #onLost = (e) => {
+    e.preventDefault();  // without this the browser never restores the context
+    this.#lost = true;
+    try { this.#pv.pv_context_lost(); } catch (err) { this.#emitError(err); }
+    this.#emit('contextlost', {});
+  };
+
+  #onRestored = () => {
+    if (this.#disposed || this.#dead) return;
+    try {
+      const r = this.#call('pv_context_restored');
+      this.#context = r.context;
+      this.#report = r.report;
+      this.#lost = false;
+      this.#call('pv_set_settings', JSON.stringify(this.#overrides));
+      this.#renderSize = [0, 0];  // the new renderer starts at its default size
+      this.#restarted();
+      this.#emit('contextrestored', {});
+    } catch (err) {
+      this.#emitError(err);
+    }
+  };
+
+  #call(name, ...args) {
+    if (this.#dead) throw new PenumbraError(`the Penumbra module aborted: ${this.#dead}`);
+    let text;
+    try {
+      text = this.#pv[name](...args);
+    } catch (e) {
+      throw new PenumbraError(`${name}: ${e && e.message ? e.message : e}`);
+    }
+    const result = JSON.parse(text);
+    if (result && typeof result === 'object' && typeof result.error === 'string') {
+      throw new PenumbraError(result.error);
+    }
+    return result;
+  }
+
+  #writeFile(path, bytes) {
+    const ptr = this.#pv.pv_alloc(bytes.length);
+    if (!ptr && bytes.length) throw new PenumbraError(`out of memory staging ${path}`);
+    try {
+      this.#mod.HEAPU8.set(bytes, ptr);
+      this.#call('pv_write_file', path, ptr, bytes.length);
+    } finally {
+      this.#pv.pv_free(ptr);
+    }
+  }
+
+  #lastError() { return this.#call('pv_last_error') || 'step failed'; }
+  #usable() { return !this.#disposed && !this.#dead && !this.#lost; }
+  #check() {
+    if (this.#disposed) throw new PenumbraError('the viewer has been disposed');
+    if (this.#dead) throw new PenumbraError(`the Penumbra module aborted: ${this.#dead}`);
+    if (this.#lost) throw new PenumbraError('the WebGL context is lost (waiting for restore)');
+  }
+  #abort(what) {
+    this.#dead = what;
+    this.#running = false;
+    this.#emitError(new PenumbraError(`the Penumbra module aborted: ${what}`));
+  }
+
+  #emit(event, detail) {
+    for (const fn of this.#listeners.get(event) || []) {
+      try { fn(detail); } catch (e) { console.error(e); }  // a handler must not stop the loop
+    }
+  }
+  #emitError(e) {
+    const err = e instanceof Error ? e : new PenumbraError(String(e));
+    if (!this.#listeners.get('error')?.size) console.error(err);
+    this.#emit('error', err);
+  }
+
+  #restarted() {
+    this.#stats.restartedAt = performance.now();
+    this.#stats.converged = false;
+    this.#needsPresent = true;
+  }
+
+  // Moving = the camera changed within stillMs. A finger or button held still does not count:
+  // the full-resolution image should come back as soon as the view stops changing.
+  #isMoving(now) {
+    return now - this.#lastChange < this.#opts.stillMs;
+  }
+
+  #syncCanvasSize() {
+    const c = this.#canvas;
+    if (!this.#opts.autoResize || !c.clientWidth || !c.clientHeight) return;
+    const ratio = this.#opts.pixelRatio ?? Math.min(globalThis.devicePixelRatio || 1, 2);
+    const w = Math.max(1, Math.round(c.clientWidth * ratio));
+    const h = Math.max(1, Math.round(c.clientHeight * ratio));
+    if (c.width !== w || c.height !== h) {
+      c.width = w;  // clears the drawing buffer: present again
+      c.height = h;
+      this.#needsPresent = true;
+    }
+  }
+
+  #tick = () => {
+    if (this.#disposed) return;
+    this.#raf = requestAnimationFrame(this.#tick);
+    if (!this.#running || this.#dead || this.#lost) return;
+    try {
+      this.#frame();
+    } catch (e) {
+      // One report per failure burst: stop stepping until something changes.
+      this.#running = false;
+      this.#emitError(e);
+      setTimeout(() => { if (!this.#disposed && !this.#dead) this.#running = true; }, 1000);
+    }
+  };
+
+  #frame() {
+    this.#syncCanvasSize();
+    const now = performance.now();
+    const moving = this.#isMoving(now);
+    const budget = this.#jsSettings.budgetMs;
+    let scale = this.#jsSettings.resolutionScale;
+    if (moving) scale = Math.min(scale, this.#motionScale);
+    const reduced = scale < this.#jsSettings.resolutionScale;
+    const w = Math.max(1, Math.round(this.#canvas.width * scale));
+    const h = Math.max(1, Math.round(this.#canvas.height * scale));
+    if (w !== this.#renderSize[0] || h !== this.#renderSize[1]) {
+      this.#call('pv_set_settings', JSON.stringify({ width: w, height: h }));
+      this.#renderSize = [w, h];
+      this.#restarted();
+    }
+    if (this.#cameraDirty && this.#orbit) {
+      const c = this.#orbit.toCamera();
+      this.#call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
+      this.#cameraDirty = false;
+      this.#restarted();
+    }
+    if (!this.#sceneInfo) return;  // nothing to show yet
+
+    let steps = 0;
+    if (!this.#pv.pv_converged()) {
+      const start = performance.now();
+      let prev = start;
+      for (;;) {
+        const f = this.#pv.pv_step();
+        if (f < 0) throw new PenumbraError(this.#lastError());
+        if (f === 0) break;
+        this.#pv.pv_sync();
+        const t = performance.now();
+        const dt = t - prev;
+        prev = t;
+        steps++;
+        this.#stats.frameMs = dt;
+        if (f === 1) {
+          this.#stats.frame1Ms = dt;
+          if (moving) this.#adaptMotionScale(dt, budget);
+        }
+        // Stop when the next frame, if it costs what this one did, would overrun the budget.
+        if (this.#pv.pv_converged() || (t - start) + dt > budget) break;
+      }
+      this.#needsPresent = true;
+    }
+    if (this.#needsPresent) {
+      this.#call('pv_present', this.#canvas.width, this.#canvas.height);
+      this.#needsPresent = false;
+    }
+    if (steps > 0) {
+      const frame = this.#pv.pv_frames_done(), total = this.#pv.pv_total_frames();
+      Object.assign(this.#stats, { frame, total, stepsPerTick: steps });
+      this.#emit('progress', { frame, total });
+      // A reduced-resolution image is a preview, not the result: no 'converged' for it.
+      if (this.#pv.pv_converged() && !this.#stats.converged && !reduced) {
+        this.#stats.converged = true;
+        this.#stats.convergedMs = performance.now() - this.#stats.restartedAt;
+        this.#emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
+      }
+    }
+  }
+
+  // Frame 1 over budget while moving: shrink the area in proportion (with 10% headroom); well
+  // under budget: grow back. Learned across gestures; the still image always uses full scale.
+  #adaptMotionScale(frame1Ms, budget) {
+    const floor = Math.min(this.#opts.minMotionScale, this.#jsSettings.resolutionScale);
+    if (frame1Ms > budget) {
+      this.#motionScale = Math.max(floor, this.#motionScale * Math.sqrt(budget / frame1Ms) * 0.9);
+    } else if (frame1Ms < budget * 0.4) {
+      this.#motionScale = Math.min(1, this.#motionScale * 1.15);
+    }
+  }
+}
+
+export const Penumbra = { create: (canvas, options) => Viewer.create(canvas, options), version };
+export default Penumbra;

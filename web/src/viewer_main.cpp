@@ -1,0 +1,505 @@
+// The wasm side of Penumbra's web viewer (web/lib/penumbra.mjs drives it; docs/web.md).
+//
+// One module instance serves one canvas. JS fetches files and stages them in the module's
+// in-memory file system (pv_write_file), so the renderer's ordinary file loaders resolve a
+// .gltf's external buffers and a scene file's glTF and environment exactly as natively. JS owns
+// the frame loop: pv_step draws one intermediate frame, pv_sync waits for the GPU (glFinish does
+// not block in WebGL), pv_present tone-maps the accumulation into the canvas.
+//
+// Every export returns plainly (numbers, or JSON text with "error" on failure) inside a
+// try/catch: a C++ exception or a Result error must never cross into JS as a throw or an abort.
+// The CPU copies of the scene and environment are kept so that a lost WebGL context can be
+// rebuilt in full on restore (pv_context_lost / pv_context_restored).
+#include <emscripten/emscripten.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include <GLES3/gl3.h>  // only for the 1-pixel read-back of pv_sync
+#include "penumbra/environment.h"
+#include "penumbra/gl_context.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+#include "penumbra/scene_file.h"
+#include "viewer_settings.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace penumbra;
+
+// Panoramas are prefiltered on the CPU in the page's only thread: small faces and few samples
+// keep that to about a second (docs/web.md has the measurement).
+constexpr int kPanoramaFaceSize = 64;
+constexpr int kPanoramaSamples = 32;
+
+struct Viewer {
+  std::string selector;
+  bool forceHalfFloat = false;
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<Renderer> renderer;
+  RenderSettings settings;
+  std::optional<Scene> scene;
+  Camera sceneCamera;  // the loaded scene's own camera, for reset
+  Camera camera;       // the camera in use
+  PackedEnvironment environment = uniformEnvironment(glm::vec3(0.0f));
+  std::string environmentName = "black";
+  bool environmentFromUser = false;  // set through the API, not by a scene file
+  std::string lastError;
+};
+
+std::unique_ptr<Viewer> gViewer;
+std::string gResult;  // backs the char* handed to JS until the next call
+
+const char* finish(const json& j) {
+  // replace: a driver string or a file name with invalid UTF-8 must not make dump() throw.
+  gResult = j.dump(-1, ' ', false, json::error_handler_t::replace);
+  return gResult.c_str();
+}
+
+json errorJson(const std::string& message) { return {{"error", message}}; }
+
+// Runs `body` (returning json) and turns any escape into {"error": ...}.
+template <class F>
+const char* guarded(F&& body) {
+  try {
+    return finish(body());
+  } catch (const std::bad_alloc&) {
+    return finish(errorJson("out of memory"));
+  } catch (const std::exception& e) {
+    return finish(errorJson(std::string("internal error: ") + e.what()));
+  } catch (...) {
+    return finish(errorJson("internal error: unknown exception"));
+  }
+}
+
+json vec3Json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+json cameraJson(const Camera& c) {
+  const float* m = glm::value_ptr(c.world);
+  return {{"name", c.name},
+          {"world", std::vector<float>(m, m + 16)},  // column-major camera-to-world
+          {"eye", vec3Json(glm::vec3(c.world[3]))},
+          {"forward", vec3Json(-glm::vec3(c.world[2]))},
+          {"up", vec3Json(glm::vec3(c.world[1]))},
+          {"yfov", c.yfov},
+          {"znear", c.znear}};
+}
+
+json stateJson(const Viewer& v) {
+  json j = {{"settings", web::settingsToJson(v.settings)},
+            {"camera", cameraJson(v.camera)},
+            {"environment", v.environmentName}};
+  if (v.scene) {
+    j["bounds"] = {{"min", vec3Json(v.scene->bounds.min)}, {"max", vec3Json(v.scene->bounds.max)}};
+    j["triangles"] = v.scene->triangleCount();
+    json names = json::array();
+    for (const Camera& c : v.scene->cameras) names.push_back(c.name);
+    j["cameras"] = names;
+    j["lights"] = v.scene->lights.size();
+  }
+  return j;
+}
+
+// (Re)creates the GL context and renderer and uploads everything the viewer holds. Used at
+// start-up and after a lost context is restored (every GL object died with the context).
+Status buildGpuState(Viewer& v) {
+  v.renderer.reset();
+  v.context.reset();
+  auto ctx = GlContext::create({.backend = GlBackend::WebGL2, .canvasSelector = v.selector});
+  if (!ctx) return ctx.error();
+  v.context = std::move(*ctx);
+  auto r = Renderer::create({.desktopGl = false, .forceHalfFloat = v.forceHalfFloat});
+  if (!r) return r.error();
+  v.renderer = std::move(*r);
+  PN_TRY(v.renderer->setSettings(v.settings));
+  PN_TRY(v.renderer->setEnvironment(v.environment));
+  if (v.scene) PN_TRY(v.renderer->setScene(*v.scene));
+  v.renderer->setCamera(v.camera);
+  return {};
+}
+
+Result<Viewer*> viewer() {
+  if (!gViewer) return makeError("the viewer is not initialised");
+  if (!gViewer->renderer) return makeError("the WebGL context is lost (waiting for restore)");
+  return gViewer.get();
+}
+
+Result<PackedEnvironment> loadEnvironmentFile(const std::string& path) {
+  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples});
+}
+
+LoadOptions browserLoadOptions() {
+  // wasm32 memory tops out at 2 GiB, and SwiftShader/most GPUs cap WebGL textures at 8192.
+  return {.memoryBudgetBytes = int64_t{768} << 20, .maxTextureSize = 4096};
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// Loads a scene file (.json), .gltf or .glb staged at `path`. Nothing changes unless every part
+// (model, camera, environment, settings) loaded: a bad file leaves the old scene on screen.
+json loadScene(Viewer& v, const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  std::optional<SceneFile> sceneFile;
+  std::string gltfPath = path;
+  if (ext == ".json") {
+    auto sf = loadSceneFile(path);
+    if (!sf) return errorJson(sf.message());
+    sceneFile = std::move(*sf);
+    gltfPath = sceneFile->gltfPath;
+  }
+  auto scene = loadGltf(gltfPath, browserLoadOptions());
+  if (!scene) return errorJson(scene.message());
+
+  Camera cam = defaultCamera(*scene);
+  const std::string cameraName = sceneFile ? sceneFile->camera : std::string();
+  if (!cameraName.empty()) {
+    auto idx = findCamera(*scene, cameraName);
+    if (!idx) return errorJson(idx.message());
+    cam = scene->cameras[static_cast<size_t>(*idx)];
+  } else if (!scene->cameras.empty()) {
+    cam = scene->cameras[0];
+  }
+
+  std::optional<PackedEnvironment> env;
+  std::string envName = v.environmentName;
+  RenderSettings settings = v.settings;
+  std::vector<std::string> warnings = scene->warnings;
+  if (sceneFile) {
+    if (!sceneFile->environmentPath.empty()) {
+      auto e = loadEnvironmentFile(sceneFile->environmentPath);
+      if (!e) return errorJson(e.message());
+      env = std::move(*e);
+      envName = fs::path(sceneFile->environmentPath).filename().string();
+    } else {
+      env = uniformEnvironment(sceneFile->uniformEnvironment);
+      const glm::vec3 u = sceneFile->uniformEnvironment;
+      envName = "uniform(" + std::to_string(u.r) + ", " + std::to_string(u.g) + ", " +
+                std::to_string(u.b) + ")";
+    }
+    // The scene file's look and progressive settings; the canvas decides the resolution.
+    settings = sceneFile->settings;
+    settings.width = v.settings.width;
+    settings.height = v.settings.height;
+    warnings.insert(warnings.end(), sceneFile->warnings.begin(), sceneFile->warnings.end());
+  } else {
+    // A bare model gets what penumbra-render gives it: default settings and, unless the user
+    // chose an environment, a uniform white one (not the previous scene file's, which may be
+    // the Cornell box's black).
+    settings = RenderSettings{};
+    settings.width = v.settings.width;
+    settings.height = v.settings.height;
+    if (!v.environmentFromUser) {
+      const SceneFile defaults;
+      env = uniformEnvironment(defaults.uniformEnvironment);
+      envName = "uniform white";
+    }
+  }
+
+  Renderer& r = *v.renderer;
+  if (auto st = r.setSettings(settings); !st) return errorJson(st.message());
+  if (env) {
+    if (auto st = r.setEnvironment(*env); !st) return errorJson(st.message());
+    v.environment = std::move(*env);
+    v.environmentName = envName;
+    v.environmentFromUser = false;
+  }
+  if (auto st = r.setScene(*scene); !st) {
+    // The GPU upload failed part-way: put the previous scene back so the viewer keeps working.
+    if (v.scene) (void)r.setScene(*v.scene);
+    (void)r.setSettings(v.settings);
+    return errorJson(st.message());
+  }
+  r.setCamera(cam);
+  v.settings = settings;
+  v.scene = std::move(*scene);
+  v.sceneCamera = cam;
+  v.camera = cam;
+  json j = stateJson(v);
+  j["warnings"] = warnings;
+  j["sceneFile"] = sceneFile.has_value();
+  return j;
+}
+
+// Makes the staging folder the working directory for one load, so the loaders see the names
+// the user knows ("model.glb", "../env/sky.hdr") and their messages say those, not a staging
+// path. Restores "/" afterwards.
+struct InFolder {
+  bool ok = false;
+  explicit InFolder(const char* dir) {
+    std::error_code ec;
+    fs::current_path(dir, ec);
+    ok = !ec;
+  }
+  ~InFolder() {
+    std::error_code ec;
+    fs::current_path("/", ec);
+  }
+};
+
+}  // namespace
+
+extern "C" {
+
+// Memory for JS to copy file bytes into (the module does not export malloc itself).
+EMSCRIPTEN_KEEPALIVE void* pv_alloc(int bytes) { return bytes > 0 ? std::malloc(bytes) : nullptr; }
+EMSCRIPTEN_KEEPALIVE void pv_free(void* p) { std::free(p); }
+
+// Creates the WebGL2 context on `selector` and the renderer. Returns {context, report} or
+// {error}. Settings start at the renderer's defaults; JS sets the resolution next.
+EMSCRIPTEN_KEEPALIVE const char* pv_create(const char* selector, int forceHalfFloat) {
+  return guarded([&]() -> json {
+    gViewer = std::make_unique<Viewer>();
+    gViewer->selector = selector ? selector : "#canvas";
+    gViewer->forceHalfFloat = forceHalfFloat != 0;
+    if (auto st = buildGpuState(*gViewer); !st) {
+      gViewer.reset();
+      return errorJson(st.message());
+    }
+    return {{"context", gViewer->context->description()},
+            {"report", gViewer->renderer->capabilityReport()},
+            {"state", stateJson(*gViewer)}};
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE void pv_destroy() {
+  try {
+    gViewer.reset();
+  } catch (...) {
+  }
+}
+
+// Writes bytes to `path` in the in-memory file system, creating folders.
+EMSCRIPTEN_KEEPALIVE const char* pv_write_file(const char* path, const uint8_t* data, int size) {
+  return guarded([&]() -> json {
+    const fs::path p(path);
+    std::error_code ec;
+    fs::create_directories(p.parent_path(), ec);
+    if (ec) return errorJson("cannot create folder for " + p.string() + ": " + ec.message());
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    if (size > 0) out.write(reinterpret_cast<const char*>(data), size);
+    if (!out) return errorJson("cannot write " + p.string());
+    return {{"ok", true}};
+  });
+}
+
+// Removes a staging folder once its files have been loaded (the scene keeps its own copy).
+EMSCRIPTEN_KEEPALIVE void pv_remove_tree(const char* path) {
+  try {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  } catch (...) {
+  }
+}
+
+// Loads `file` (a scene .json, .gltf or .glb) staged in folder `dir`.
+EMSCRIPTEN_KEEPALIVE const char* pv_load_scene(const char* dir, const char* file) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    InFolder here(dir);
+    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
+    return loadScene(**v, file);
+  });
+}
+
+// A packed environment (penumbra-prefilter) or a panorama (.hdr/.png, prefiltered here),
+// `file` staged in folder `dir`.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char* file) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    InFolder here(dir);
+    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
+    const std::string path = file;
+    auto env = loadEnvironmentFile(path);
+    if (!env) return errorJson(env.message());
+    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
+    (*v)->environment = std::move(*env);
+    (*v)->environmentName = fs::path(path).filename().string();
+    (*v)->environmentFromUser = true;
+    return stateJson(**v);
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, float b) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    PackedEnvironment env = uniformEnvironment(glm::vec3(r, g, b));
+    if (auto st = (*v)->renderer->setEnvironment(env); !st) return errorJson(st.message());
+    (*v)->environment = std::move(env);
+    (*v)->environmentName = "uniform";
+    (*v)->environmentFromUser = true;
+    return stateJson(**v);
+  });
+}
+
+// Merges a JSON object of settings (web/src/viewer_settings.h) into the current ones.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_settings(const char* changes) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    json parsed = json::parse(changes ? changes : "", nullptr, /*allow_exceptions=*/false);
+    if (parsed.is_discarded()) return errorJson("settings: not valid JSON");
+    auto merged = web::mergeSettings((*v)->settings, parsed);
+    if (!merged) return errorJson(merged.message());
+    if (auto st = (*v)->renderer->setSettings(*merged); !st) return errorJson(st.message());
+    (*v)->settings = *merged;
+    return web::settingsToJson((*v)->settings);
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* pv_get_state() {
+  return guarded([&]() -> json {
+    if (!gViewer) return errorJson("the viewer is not initialised");
+    return stateJson(*gViewer);
+  });
+}
+
+// A look-at camera (the orbit controls). yfov in radians; znear from the scene's bounds so the
+// depth range fits wherever the orbit goes.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_camera(float ex, float ey, float ez, float tx, float ty,
+                                               float tz, float ux, float uy, float uz, float yfov) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    const glm::vec3 eye(ex, ey, ez), target(tx, ty, tz), up(ux, uy, uz);
+    const glm::vec3 dir = target - eye;
+    if (!(glm::length(dir) > 1e-6f) || !(glm::length(glm::cross(dir, up)) > 1e-9f) ||
+        !(yfov > 0.0f && yfov < 3.1f) || !std::isfinite(ex + ey + ez + tx + ty + tz)) {
+      return errorJson("camera: eye and target must differ, up must not be parallel to the view, "
+                       "and yfov must be in (0, 3.1) radians");
+    }
+    Camera c;
+    c.name = "orbit";
+    c.world = glm::inverse(glm::lookAt(eye, target, up));
+    c.yfov = yfov;
+    float dist = glm::length(dir), radius = 1.0f;
+    if ((*v)->scene && (*v)->scene->bounds.valid()) {
+      dist = glm::length((*v)->scene->bounds.center() - eye);
+      radius = (*v)->scene->bounds.radius();
+    }
+    c.znear = std::max(std::max(dist - radius, dist * 0.01f) * 0.5f, 1e-4f);
+    (*v)->camera = c;
+    (*v)->renderer->setCamera(c);
+    return cameraJson(c);
+  });
+}
+
+// Back to the loaded scene's own camera, exactly (no look-at round trip).
+EMSCRIPTEN_KEEPALIVE const char* pv_reset_camera() {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    (*v)->camera = (*v)->sceneCamera;
+    (*v)->renderer->setCamera((*v)->camera);
+    return cameraJson((*v)->camera);
+  });
+}
+
+// Draws the next intermediate frame: its number, 0 once converged, -1 on error (pv_last_error).
+EMSCRIPTEN_KEEPALIVE int pv_step() {
+  try {
+    auto v = viewer();
+    if (!v) {
+      if (gViewer) gViewer->lastError = v.message();
+      return -1;
+    }
+    auto f = (*v)->renderer->step();
+    if (!f) {
+      (*v)->lastError = f.message();
+      return -1;
+    }
+    return *f;
+  } catch (const std::exception& e) {
+    if (gViewer) gViewer->lastError = std::string("internal error: ") + e.what();
+  } catch (...) {
+    if (gViewer) gViewer->lastError = "internal error: unknown exception";
+  }
+  return -1;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* pv_last_error() {
+  return guarded([&]() -> json { return gViewer ? gViewer->lastError : std::string(); });
+}
+
+// Waits until the GPU has executed everything issued so far: glFinish does not block in WebGL,
+// but a 1-pixel readPixels does (Chromium runs the GPU command stream in order and the read is
+// a synchronous round trip), so the JS frame loop can time frames against its budget.
+EMSCRIPTEN_KEEPALIVE void pv_sync() {
+  if (!gViewer || !gViewer->renderer) return;
+  uint8_t px[4];
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+}
+
+// Tone-maps the accumulated image into the canvas (width x height, its drawing-buffer size).
+EMSCRIPTEN_KEEPALIVE const char* pv_present(int width, int height) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (auto st = (*v)->renderer->present(width, height); !st) return errorJson(st.message());
+    return {{"ok", true}};
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE int pv_frames_done() {
+  return gViewer && gViewer->renderer ? gViewer->renderer->framesDone() : 0;
+}
+EMSCRIPTEN_KEEPALIVE int pv_total_frames() {
+  return gViewer && gViewer->renderer ? gViewer->renderer->totalFrames() : 0;
+}
+EMSCRIPTEN_KEEPALIVE int pv_converged() {
+  return gViewer && gViewer->renderer && gViewer->renderer->converged() ? 1 : 0;
+}
+EMSCRIPTEN_KEEPALIVE void pv_restart() {
+  if (gViewer && gViewer->renderer) gViewer->renderer->restart();
+}
+
+// The canvas lost its WebGL context: drop every GL object (their deletes are no-ops on a lost
+// context) but keep the scene, environment, camera and settings for the restore.
+EMSCRIPTEN_KEEPALIVE void pv_context_lost() {
+  try {
+    if (!gViewer) return;
+    gViewer->renderer.reset();
+    gViewer->context.reset();
+  } catch (...) {
+  }
+}
+
+// The context is back: recreate context, renderer and all uploads. {state} or {error}.
+EMSCRIPTEN_KEEPALIVE const char* pv_context_restored() {
+  return guarded([&]() -> json {
+    if (!gViewer) return errorJson("the viewer is not initialised");
+    if (auto st = buildGpuState(*gViewer); !st) {
+      gViewer->renderer.reset();
+      return errorJson("restoring after context loss: " + st.message());
+    }
+    return {{"context", gViewer->context->description()},
+            {"report", gViewer->renderer->capabilityReport()},
+            {"state", stateJson(*gViewer)}};
+  });
+}
+
+}  // extern "C"

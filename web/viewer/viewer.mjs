@@ -1,0 +1,252 @@
+// The viewer page (index.html): creates a Penumbra viewer on the full-window canvas, loads the
+// scene and environment named in the URL (default: the Cornell box), and wires the progress
+// line, the settings panel, drag and drop, the file picker, the screenshot button and the
+// context-loss notices to the JS API. window.penumbraPage exposes the viewer and a log of what
+// happened, for the browser tests (web/tests/viewer.test.mjs).
+import Penumbra from './lib/penumbra.mjs';
+
+const DEFAULT_SCENE = 'assets/cornell_box/cornell_box.json';
+const $ = (id) => document.getElementById(id);
+const query = new URLSearchParams(location.search);
+
+// What the tests read: errors shown, progress frames seen (bounded), counters.
+const page = {
+  viewer: null, ready: false, errors: [], progressLog: [], convergedCount: 0,
+  lostCount: 0, restoredCount: 0, sceneName: null,
+};
+window.penumbraPage = page;
+
+// ---- messages ---------------------------------------------------------------------------------
+
+function showMessage(text, { kind = 'error', id, timeoutMs } = {}) {
+  if (id) $(`msg-${id}`)?.remove();
+  const box = document.createElement('div');
+  box.className = `message ${kind}`;
+  if (id) box.id = `msg-${id}`;
+  box.textContent = text;
+  const close = document.createElement('button');
+  close.type = 'button';
+  close.textContent = '×';
+  close.title = 'Dismiss';
+  close.onclick = () => box.remove();
+  box.append(close);
+  $('messages').append(box);
+  while ($('messages').children.length > 4) $('messages').firstChild.remove();
+  if (timeoutMs) setTimeout(() => box.remove(), timeoutMs);
+}
+
+function showError(e) {
+  const text = e && e.message ? e.message : String(e);
+  page.errors.push(text);
+  showMessage(text);
+}
+
+// ---- progress line ----------------------------------------------------------------------------
+
+function renderProgress(viewer) {
+  const s = viewer.state;
+  $('progress').textContent = s.total ? `frame ${s.frame} of ${s.total}` : 'no scene';
+  $('progress-fill').style.width = s.total ? `${(100 * s.frame) / s.total}%` : '0';
+  $('progress-fill').classList.toggle('done', s.converged);
+  const lines = [`${s.renderWidth}×${s.renderHeight}` +
+                 (s.renderWidth !== s.canvasWidth ? ` of ${s.canvasWidth}×${s.canvasHeight}` : '') +
+                 ` · ${s.frameMs.toFixed(1)} ms/frame · ${s.stepsPerTick}/tick`];
+  if (s.converged) lines.push(`converged in ${(s.convergedMs / 1000).toFixed(2)} s`);
+  $('detail').textContent = lines.join('\n');
+}
+
+// ---- settings panel ---------------------------------------------------------------------------
+
+const form = $('panel');
+const numberFields = ['frames', 'fd', 'occlusionDistance', 'exposure', 'budgetMs', 'resolutionScale'];
+
+function fillPanel(settings) {
+  for (const el of form.elements) {
+    if (!el.name || !(el.name in settings)) continue;
+    if (el.type === 'checkbox') el.checked = Boolean(settings[el.name]);
+    else if (el.name === 'resolutionScale') el.value = String(settings.resolutionScale);
+    // Settings travel through float32 in wasm: 0.3 comes back as 0.30000001192092896.
+    else if (typeof settings[el.name] === 'number') el.value = String(Number(settings[el.name].toPrecision(6)));
+    else el.value = String(settings[el.name]);
+  }
+  form.elements.fdOut.value = Number(settings.fd).toFixed(2);
+  form.elements.exposureOut.value = `${settings.exposure >= 0 ? '+' : ''}${Number(settings.exposure).toFixed(2)}`;
+}
+
+function wirePanel(viewer) {
+  const apply = (el) => {
+    if (!el.name || el.tagName === 'OUTPUT') return;
+    let value = el.type === 'checkbox' ? el.checked : el.value;
+    if (numberFields.includes(el.name)) value = Number(value);
+    if (Number.isNaN(value)) return;
+    viewer.setSettings({ [el.name]: value }).then(fillPanel, (e) => {
+      showError(e);
+      fillPanel(viewer.settings);  // put the field back to what is in effect
+    });
+  };
+  // Ranges update live; typed numbers when committed (a half-typed value is not a setting).
+  form.addEventListener('input', (e) => { if (e.target.type === 'range') apply(e.target); });
+  form.addEventListener('change', (e) => { if (e.target.type !== 'range') apply(e.target); });
+  form.addEventListener('submit', (e) => e.preventDefault());
+  const toggle = $('toggle-panel');
+  const setVisible = (v) => {
+    form.classList.toggle('hidden', !v);
+    toggle.setAttribute('aria-expanded', String(v));
+  };
+  toggle.onclick = () => setVisible(form.classList.contains('hidden'));
+  if (query.get('panel') === '0') setVisible(false);
+}
+
+// ---- files: drop and picker -------------------------------------------------------------------
+
+const SCENE_EXT = /\.(glb|gltf|json)$/i;
+const ENV_EXT = /\.(hdr|png|jpe?g)$/i;
+
+// A dropped set: the first scene-like file is the scene and the others its resources; with no
+// scene, an image is the environment. A lone .hdr next to a model is applied as environment too.
+async function openFiles(viewer, fileList) {
+  const files = [...fileList];
+  if (!files.length) return;
+  const sceneFile = files.find((f) => SCENE_EXT.test(f.name)) ||
+                    files.find((f) => !ENV_EXT.test(f.name));  // unknown type: let the loader judge
+  const envFiles = files.filter((f) => /\.hdr$/i.test(f.name) ||
+                                       (!sceneFile && ENV_EXT.test(f.name)));
+  try {
+    if (sceneFile) {
+      const resources = Object.fromEntries(files.filter((f) => f !== sceneFile).map((f) => [f.name, f]));
+      await loadScene(viewer, sceneFile, { name: sceneFile.name, resources });
+    }
+    if (envFiles.length === 1 && !/\.json$/i.test(sceneFile?.name || '')) {
+      showMessage(`prefiltering ${envFiles[0].name}…`, { kind: 'info', id: 'env', timeoutMs: 4000 });
+      await viewer.setEnvironment(envFiles[0], { name: envFiles[0].name });
+      $('msg-env')?.remove();
+    }
+  } catch (e) {
+    $('msg-env')?.remove();
+    showError(e);
+  }
+}
+
+async function loadScene(viewer, source, options) {
+  const info = await viewer.loadScene(source, options);
+  page.sceneName = info.name;
+  fillPanel(viewer.settings);
+  document.title = `${info.name} — Penumbra viewer`;
+  for (const w of info.warnings || []) showMessage(`${info.name}: ${w}`, { kind: 'info', timeoutMs: 8000 });
+  return info;
+}
+
+function wireFiles(viewer) {
+  let depth = 0;
+  const overlay = $('drop-overlay');
+  window.addEventListener('dragenter', (e) => { e.preventDefault(); depth++; overlay.hidden = false; });
+  window.addEventListener('dragleave', () => { if (--depth <= 0) { depth = 0; overlay.hidden = true; } });
+  window.addEventListener('dragover', (e) => e.preventDefault());
+  window.addEventListener('drop', (e) => {
+    e.preventDefault();
+    depth = 0;
+    overlay.hidden = true;
+    openFiles(viewer, e.dataTransfer ? e.dataTransfer.files : []);
+  });
+  $('open').onclick = () => $('file').click();
+  $('file').onchange = (e) => { openFiles(viewer, e.target.files); e.target.value = ''; };
+}
+
+// ---- buttons ----------------------------------------------------------------------------------
+
+function wireButtons(viewer) {
+  $('reset').onclick = () => viewer.setCamera('reset').catch(showError);
+  $('shot').onclick = async () => {
+    try {
+      const blob = await viewer.screenshot();
+      const a = document.createElement('a');
+      a.href = URL.createObjectURL(blob);
+      a.download = `penumbra-${(page.sceneName || 'scene').replace(/\.\w+$/, '')}-f${viewer.state.frame}.png`;
+      a.click();
+      setTimeout(() => URL.revokeObjectURL(a.href), 10_000);
+    } catch (e) {
+      showError(e);
+    }
+  };
+}
+
+// ---- start ------------------------------------------------------------------------------------
+
+function numberParam(name) {
+  const v = query.get(name);
+  return v === null || v === '' ? undefined : Number(v);
+}
+
+async function main() {
+  const options = {
+    forceHalfFloat: query.get('halfFloat') === '1',
+    budgetMs: numberParam('budget'),
+    resolutionScale: numberParam('scale'),
+    pixelRatio: numberParam('pixelRatio'),
+  };
+  const overrides = { frames: numberParam('frames'), fd: numberParam('fd'),
+                      exposure: numberParam('exposure'),
+                      occlusionDistance: numberParam('occlusionDistance') };
+  if (query.get('tonemap')) overrides.toneMapper = query.get('tonemap');
+  if (query.get('ssgi')) overrides.screenSpaceIndirect = query.get('ssgi') !== '0';
+  for (const o of [options, overrides]) {
+    for (const k of Object.keys(o)) if (o[k] === undefined) delete o[k];
+  }
+  let viewer;
+  try {
+    viewer = await Penumbra.create($('canvas'), { ...options, ...overrides });
+  } catch (e) {
+    $('progress').textContent = 'not available';
+    showError(e);
+    page.fatal = e.message;
+    return;
+  }
+  page.viewer = viewer;
+  $('caps').textContent = `${viewer.info.context}\n${viewer.info.report}`.trim();
+  viewer.on('progress', ({ frame, total }) => {
+    page.progressLog.push(frame);
+    if (page.progressLog.length > 2000) page.progressLog.splice(0, 1000);
+    page.total = total;
+  });
+  viewer.on('converged', () => { page.convergedCount++; });
+  viewer.on('error', showError);
+  viewer.on('contextlost', () => {
+    page.lostCount++;
+    showMessage('WebGL context lost — waiting for the browser to restore it', { id: 'lost' });
+  });
+  viewer.on('contextrestored', () => {
+    page.restoredCount++;
+    $('msg-lost')?.remove();
+    showMessage('WebGL context restored', { kind: 'info', id: 'restored', timeoutMs: 4000 });
+    $('caps').textContent = `${viewer.info.context}\n${viewer.info.report}`.trim();
+  });
+  // The progress line redraws at display rate, independently of the render loop's events.
+  const redraw = () => { renderProgress(viewer); requestAnimationFrame(redraw); };
+  requestAnimationFrame(redraw);
+
+  wirePanel(viewer);
+  wireFiles(viewer);
+  wireButtons(viewer);
+  fillPanel(viewer.settings);
+
+  const sceneUrl = query.get('scene') || DEFAULT_SCENE;
+  try {
+    await loadScene(viewer, sceneUrl);
+  } catch (e) {
+    showError(e);
+  }
+  const envUrl = query.get('env');
+  if (envUrl) {
+    try {
+      showMessage(`loading ${envUrl}…`, { kind: 'info', id: 'env' });
+      await viewer.setEnvironment(envUrl);
+    } catch (e) {
+      showError(e);
+    } finally {
+      $('msg-env')?.remove();
+    }
+  }
+  page.ready = true;
+}
+
+main().catch((e) => { showError(e); page.fatal = String(e); });
