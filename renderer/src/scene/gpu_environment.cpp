@@ -16,17 +16,6 @@ const Image& dfgLut() {
   return lut;
 }
 
-// RGB -> RGBA: four-channel half floats sample on fast paths everywhere (llvmpipe converts
-// three-channel RGB16F texel by texel), are filterable on every WebGL2 device, and are
-// twice as compact as RGBA32F.
-std::vector<float> rgba(const Image& img) {
-  std::vector<float> out(static_cast<size_t>(img.width) * img.height * 4, 1.0f);
-  for (size_t i = 0, n = static_cast<size_t>(img.width) * img.height; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) out[i * 4 + c] = img.pixels[i * img.channels + c];
-  }
-  return out;
-}
-
 }  // namespace
 
 Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvironment& env) {
@@ -46,7 +35,7 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
         return makeError("environment face " + std::to_string(f) + " of mip " + std::to_string(m) +
                          " has the wrong size or channels");
       }
-      cube->upload(f, m, rgba(img).data(), gl::DataType::Float);
+      cube->upload(f, m, img.pixels.data(), gl::DataType::Float);
     }
   }
   ge->cube_ = std::move(*cube);
@@ -54,11 +43,11 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
   const Image& lut = dfgLut();
   auto lutTex = gl::Texture2D::create({.width = lut.width,
                                        .height = lut.height,
-                                       .format = gl::PixelFormat::RGBA16F,
+                                       .format = gl::PixelFormat::RGB16F,
                                        .sampler = {.minFilter = gl::Filter::Linear}});
   if (!lutTex) return makeError("DFG table: " + lutTex.message());
   // The LUT image has row 0 = roughness near 0, which is what texture t = 0 should read.
-  lutTex->upload(0, rgba(lut).data(), gl::DataType::Float);
+  lutTex->upload(0, lut.pixels.data(), gl::DataType::Float);
   ge->lut_ = std::move(*lutTex);
 
   // Pre-convolve with the clamped cosine: E(n) = sum A_l L_lm Y_lm(n).

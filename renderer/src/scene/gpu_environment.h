@@ -1,4 +1,4 @@
-// GpuEnvironment: the environment on the GPU — the prefiltered specular cube (RGBA16F, one
+// GpuEnvironment: the environment on the GPU — the prefiltered specular cube (RGB16F, one
 // explicit level per prefiltered mip), the SH irradiance coefficients pre-convolved with the
 // clamped cosine, and the DFG lookup table (computed once per process on the CPU).
 #pragma once
