@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -79,6 +80,7 @@ int main(int argc, char** argv) {
                                                                          contactPath;
   float exposure = 0, fd = 0, occDistance = 0, envIntensity = -1, envRotation = 0;
   int frames = 0, lightSamples = -1, shadowSize = 0, saveEvery = 0;
+  int64_t memoryBudgetMb = 2048;
   uint32_t seed = 0;
   bool noSsgi = false, quiet = false, noBackground = false, info = false, halfFloat = false;
   app.add_option("scene", scenePath, "scene file (.json) or model (.gltf/.glb)")->required();
@@ -108,6 +110,9 @@ int main(int argc, char** argv) {
   app.add_option("--save-every", saveEvery, "also write OUT_fNNNN.png every K frames");
   app.add_option("--contact-sheet", contactPath, "write frames 1, 2, 4, ... m side by side");
   app.add_flag("--half-float", halfFloat, "accumulate in RGBA16F (the weak-device path)");
+  app.add_option("--memory-budget", memoryBudgetMb,
+                 "memory budget in MB for the decoded scene and, separately, the estimated GPU "
+                 "memory of the render targets (default 2048)");
   app.add_flag("--info", info, "print the GL context and capability report");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   CLI11_PARSE(app, argc, argv);
@@ -144,6 +149,24 @@ int main(int argc, char** argv) {
   if (!envPath.empty()) sf.environmentPath = envPath;
   if (!cameraName.empty()) sf.camera = cameraName;
   if (auto st = validate(s); !st) return fail(st.message());
+  if (memoryBudgetMb < 1 || memoryBudgetMb > (int64_t{1} << 30)) {
+    return fail("--memory-budget must be a positive number of MB, got " +
+                std::to_string(memoryBudgetMb));
+  }
+  const int64_t budgetBytes = memoryBudgetMb << 20;
+  {
+    // Render targets: about 5 RGBA32F colour targets and 2 32-bit depth buffers per pixel,
+    // plus up to 4 shadow maps of 32-bit depth. Checked before any GL allocation.
+    const int64_t pixels = int64_t{s.width} * s.height;
+    const int64_t shadow = int64_t{s.progressive.shadowMapSize} * s.progressive.shadowMapSize;
+    const int64_t need = pixels * (5 * 16 + 2 * 4) + 4 * shadow * 4;
+    if (need > budgetBytes) {
+      return fail("render targets for " + std::to_string(s.width) + "x" +
+                  std::to_string(s.height) + " need about " + std::to_string(need >> 20) +
+                  " MB of GPU memory, over the memory budget of " +
+                  std::to_string(memoryBudgetMb) + " MB (--memory-budget)");
+    }
+  }
   if (!quiet) {
     for (const auto& w : sf.warnings)
       std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
@@ -163,7 +186,9 @@ int main(int argc, char** argv) {
   auto context = GlContext::create({.backend = *backend});
   if (!context) return fail(context.message());
 
-  auto scene = loadGltf(sf.gltfPath);
+  LoadOptions loadOptions;
+  loadOptions.memoryBudgetBytes = budgetBytes;
+  auto scene = loadGltf(sf.gltfPath, loadOptions);
   if (!scene) return fail(scene.message());
   if (!quiet) {
     for (const auto& w : scene->warnings)

@@ -1,9 +1,12 @@
 #include "penumbra/scene_file.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -25,11 +28,50 @@ void warnUnknown(const json& obj, const std::set<std::string>& known, const std:
   }
 }
 
+// True when every number in v (a number or an array of them) converts to the integer type I
+// without overflow. nlohmann's get<int>() static_casts a floating-point value, and one beyond
+// the target's range (e.g. 6e127) is undefined behaviour (found by tests/fuzz/fuzz_scene_json).
+template <class I>
+bool fitsIntegral(const json& v) {
+  if (v.is_array()) {
+    for (const auto& e : v)
+      if (!fitsIntegral<I>(e)) return false;
+    return true;
+  }
+  constexpr double lo = static_cast<double>(std::numeric_limits<I>::min()) - 1.0;
+  constexpr double hi = static_cast<double>(std::numeric_limits<I>::max()) + 1.0;
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    return d > lo && d < hi;  // false for NaN
+  }
+  if (v.is_number_unsigned()) {
+    return v.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<I>::max());
+  }
+  if (v.is_number_integer()) {
+    const int64_t i = v.get<int64_t>();
+    return static_cast<double>(i) > lo && static_cast<double>(i) < hi;
+  }
+  return true;  // not a number: get<T>() reports the wrong type
+}
+
+template <class T>
+struct IntegralOf {
+  using type = T;
+};
+template <class T>
+struct IntegralOf<std::vector<T>> {
+  using type = T;
+};
+
 // Reads obj[key] into out when present; the type must match.
 template <class T>
 Status read(const json& obj, const char* key, T& out, const std::string& where) {
   auto it = obj.find(key);
   if (it == obj.end()) return {};
+  using I = typename IntegralOf<T>::type;
+  if constexpr (std::is_integral_v<I> && !std::is_same_v<I, bool>) {
+    if (!fitsIntegral<I>(*it)) return makeError(where + ": '" + key + "' is out of range");
+  }
   try {
     out = it->template get<T>();
   } catch (const json::exception&) {
