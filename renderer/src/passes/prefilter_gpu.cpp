@@ -3,7 +3,6 @@
 // back into the CPU Cubemap layout so everything downstream is shared with the CPU path.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include "gl/capabilities.h"
@@ -22,8 +21,7 @@ bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 }  // namespace
 
 bool gpuPrefilterIsFaster() {
-  const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const std::string renderer = r ? r : "";
+  const std::string renderer = gl::queryCapabilities(false).renderer;
   for (const char* soft : {"llvmpipe", "softpipe", "SwiftShader", "swiftshader"}) {
     if (renderer.find(soft) != std::string::npos) return false;
   }
