@@ -31,11 +31,6 @@ long peakRssMb() {
   return u.ru_maxrss / 1024;
 }
 
-// Reads one pixel so the GPU has finished (a full glFinish equivalent for timing).
-void sync(Renderer& r) {
-  (void)r.lastFrame();
-}
-
 struct Row {
   std::string scene;
   int width, height, frames;
@@ -82,7 +77,6 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames) {
   auto done = (*r)->readDisplay();
   auto t2 = Clock::now();
   if (!first || !done) return makeError("read-back failed");
-  sync(**r);
   return Row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
              w,
              h,

@@ -157,6 +157,17 @@ void Program::set(std::string_view n, const glm::mat3& v) const {
 void Program::set(std::string_view n, const glm::mat4& v) const {
   glUniformMatrix4fv(location(n), 1, GL_FALSE, glm::value_ptr(v));
 }
+void Program::set(std::string_view n, std::span<const int> v) const {
+  if (!v.empty()) glUniform1iv(location(n), static_cast<GLsizei>(v.size()), v.data());
+}
+void Program::set(std::string_view n, std::span<const glm::vec2> v) const {
+  if (!v.empty()) glUniform2fv(location(n), static_cast<GLsizei>(v.size()), &v[0].x);
+}
+void Program::set(std::string_view n, std::span<const glm::mat3> v) const {
+  if (!v.empty()) {
+    glUniformMatrix3fv(location(n), static_cast<GLsizei>(v.size()), GL_FALSE, &v[0][0].x);
+  }
+}
 void Program::set(std::string_view n, std::span<const glm::vec3> v) const {
   if (!v.empty()) glUniform3fv(location(n), static_cast<GLsizei>(v.size()), &v[0].x);
 }

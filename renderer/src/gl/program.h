@@ -51,8 +51,11 @@ class Program {
   void set(std::string_view name, const glm::vec4& v) const;
   void set(std::string_view name, const glm::mat3& v) const;
   void set(std::string_view name, const glm::mat4& v) const;
+  void set(std::string_view name, std::span<const int> v) const;
+  void set(std::string_view name, std::span<const glm::vec2> v) const;
   void set(std::string_view name, std::span<const glm::vec3> v) const;
   void set(std::string_view name, std::span<const glm::vec4> v) const;
+  void set(std::string_view name, std::span<const glm::mat3> v) const;
   void set(std::string_view name, std::span<const glm::mat4> v) const;
   GLuint id() const { return handle_.id(); }
 

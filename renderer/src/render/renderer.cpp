@@ -227,10 +227,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (plan.frame == 1) targets->current = 0;
     const Camera cam = activeCamera();
     const CameraMatrices cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
-    const CameraMatrices plain = cameraMatrices(cam, targets->width, targets->height, {0, 0});
     if (plan.frame == 1) prepassValid = false;
     if (plan.occlusion && (plan.renderPrepass || !prepassValid)) {
-      renderPrepass(plain);
+      renderPrepass(cameraMatrices(cam, targets->width, targets->height, {0, 0}));
       stats.prepass = true;
     }
     stats.occlusion = plan.occlusion && prepassValid;
@@ -264,7 +263,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
           views.push_back({});
         }
       }
-      PN_TRY(drawLighting(plan, cm, plain, viewProj, b == 0, batch, views,
+      PN_TRY(drawLighting(plan, cm, viewProj, b == 0, batch, views,
                           b == 0 ? punctual : std::vector<const LightSample*>{}));
       ++stats.lightingPasses;
     }
@@ -280,11 +279,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     acc.set("uCurrent", 1);
     acc.set("uWeight", 1.0f / static_cast<float>(plan.frame));
     accumulate->draw();
-    // WebGL refuses any draw whose program has a sampler on a unit holding a texture of the
-    // bound framebuffer (a "feedback loop"), even if the shader never reads it. The material
-    // samplers of the next lighting pass sit on units 0-4 whether or not the material has a
-    // texture there, and unit 1 now holds the frame target they draw into: park a dummy there.
-    dummy2d.bind(1);
     targets->current = next;
     return gl::checkError("frame " + std::to_string(plan.frame));
   }
@@ -300,12 +294,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
     background->draw();
   }
 
-  Status drawLighting(const FramePlan& plan, const CameraMatrices& cm, const CameraMatrices& plain,
-                      const glm::mat4& viewProj, bool first,
-                      const std::vector<const LightSample*>& batch,
+  Status drawLighting(const FramePlan& plan, const CameraMatrices& cm, const glm::mat4& viewProj,
+                      bool first, const std::vector<const LightSample*>& batch,
                       const std::vector<passes::ShadowView>& views,
                       const std::vector<const LightSample*>& punctual) {
-    (void)plain;
     targets->frame.framebuffer.bind();
     gl::setViewport(0, 0, targets->width, targets->height);
     if (first) {
@@ -348,9 +340,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       }
     }
     p.set("uAreaCount", static_cast<int>(batch.size()));
-    for (size_t i = 0; i < lightIds.size(); ++i) {
-      p.set("uAreaLight[" + std::to_string(i) + "]", lightIds[i]);
-    }
+    p.set("uAreaLight", std::span<const int>(lightIds));
     p.set("uAreaPos", std::span<const glm::vec3>(pos));
     p.set("uAreaDir", std::span<const glm::vec3>(dir));
     p.set("uAreaRight", std::span<const glm::vec3>(right));
@@ -380,14 +370,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     p.set("uPunctualPos", std::span<const glm::vec4>(ppos));
     p.set("uPunctualDir", std::span<const glm::vec4>(pdir));
     p.set("uPunctualColor", std::span<const glm::vec3>(pcol));
-    if (!cone.empty()) {
-      std::vector<glm::vec4> c4;
-      for (auto c : cone) c4.emplace_back(c, 0, 0);
-      // uPunctualCone is a vec2 array: set element-wise.
-      for (size_t i = 0; i < cone.size(); ++i) {
-        p.set("uPunctualCone[" + std::to_string(i) + "]", cone[i]);
-      }
-    }
+    p.set("uPunctualCone", std::span<const glm::vec2>(cone));
     gl::PipelineState opaque;
     if (!first) {
       opaque.depthTest = gl::DepthTest::LessEqual;

@@ -107,7 +107,8 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
     gs->materials_.push_back(std::move(gm));
   }
   gs->materials_.push_back(GpuMaterial{});
-  auto fallback = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
+  auto fallback =
+      gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
   if (!fallback) return fallback.error();
   const uint8_t white[4] = {255, 255, 255, 255};
   fallback->upload(0, white, gl::DataType::UInt8);
@@ -210,9 +211,7 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   }
   program.set("uTextureMask", textureMask);
   program.set("uTexCoordMask", texCoordMask);
-  for (int slot = 0; slot < 5; ++slot) {
-    program.set("uUvTransform[" + std::to_string(slot) + "]", transforms[slot]);
-  }
+  program.set("uUvTransform", std::span<const glm::mat3>(transforms));
 }
 
 void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
