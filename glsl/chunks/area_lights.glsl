@@ -4,7 +4,6 @@
 // area-preserving 16-gon. Specular: Karis' most representative point with the lobe widened by
 // the light's size and renormalised, scaled by the same irradiance.
 const int DISK_SEGMENTS = 16;
-const int MAX_POLY = 17;
 
 struct AreaLight {
   vec3 position;  // centre
@@ -15,67 +14,76 @@ struct AreaLight {
   bool disk;
 };
 
-// Contribution of the edge a -> b (unit vectors from the shading point) to the contour sum.
+// Contribution of the edge a -> b (unit vectors from the shading point) to the contour sum:
+// theta * dot(normalize(cross(a, b)), n). theta / sin(theta) comes from the rational fit of
+// Hill and Heitz (2016) instead of atan, which costs a software rasterizer far more than the
+// rest of the integral; the fit's relative error stays under 0.1 %.
 float edgeTerm(vec3 a, vec3 b, vec3 n) {
-  vec3 c = cross(a, b);
-  float len = length(c);
-  if (len < 1e-9) return 0.0;
-  return atan(len, dot(a, b)) * dot(c / len, n);
-}
-
-// Irradiance per unit luminance at a point (vertices relative to it) with normal n.
-float polygonIrradiance(vec3 verts[MAX_POLY], int count, vec3 n) {
-  float sum = 0.0;
-  bool haveExit = false, haveEnter = false;
-  vec3 exitPt = vec3(0.0), enterPt = vec3(0.0);
-  for (int i = 0; i < MAX_POLY; ++i) {
-    if (i >= count) break;
-    vec3 a = verts[i];
-    vec3 b = verts[i + 1 == count ? 0 : i + 1];
-    float da = dot(a, n), db = dot(b, n);
-    if (da >= 0.0 && db >= 0.0) {
-      sum += edgeTerm(normalize(a), normalize(b), n);
-    } else if (da >= 0.0 && db < 0.0) {
-      vec3 x = a + (b - a) * (da / (da - db));
-      sum += edgeTerm(normalize(a), normalize(x), n);
-      exitPt = x;
-      haveExit = true;
-    } else if (da < 0.0 && db >= 0.0) {
-      vec3 x = a + (b - a) * (da / (da - db));
-      sum += edgeTerm(normalize(x), normalize(b), n);
-      enterPt = x;
-      haveEnter = true;
-    }
-  }
-  if (haveExit && haveEnter) sum += edgeTerm(normalize(exitPt), normalize(enterPt), n);
-  return 0.5 * abs(sum);
-}
-
-int areaLightPolygon(AreaLight L, vec3 p, out vec3 verts[MAX_POLY]) {
-  vec3 c = L.position - p;
-  if (L.disk) {
-    // Area-preserving regular polygon: r' = r sqrt(2 pi / (N sin(2 pi / N))).
-    float r = 0.5 * L.size.x * 1.0130;  // N = 16
-    for (int i = 0; i < DISK_SEGMENTS; ++i) {
-      float phi = float(i) * (2.0 * PI / float(DISK_SEGMENTS));
-      verts[i] = c + r * (cos(phi) * L.right + sin(phi) * L.up);
-    }
-    return DISK_SEGMENTS;
-  }
-  vec3 hx = 0.5 * L.size.x * L.right, hy = 0.5 * L.size.y * L.up;
-  verts[0] = c - hx - hy;
-  verts[1] = c + hx - hy;
-  verts[2] = c + hx + hy;
-  verts[3] = c - hx + hy;
-  return 4;
+  float x = dot(a, b);
+  float y = abs(x);
+  float v = (0.8543985 + (0.4965155 + 0.0145206 * y) * y) / (3.4175940 + (4.1616724 + y) * y);
+  // The fit gives theta / (2 pi sin(theta)).
+  float thetaOverSin = x > 0.0 ? v : 0.5 * inversesqrt(max(1.0 - x * x, 1e-7)) - v;
+  return (2.0 * PI) * thetaOverSin * dot(cross(a, b), n);
 }
 
 // Irradiance per unit luminance from the light at p with normal n (0 behind the emitter).
+// The polygon's vertices are generated on the fly, c + cos(t) A + sin(t) B with t stepping by
+// 2 pi / N (a rotation recurrence), and clipped to the horizon edge by edge: no local arrays,
+// which a SIMD software rasterizer would spill to memory per lane. A rect is the N = 4 case
+// (A, B = sqrt 2 times the half extents, starting at 225 degrees); a disk an area-preserving
+// 16-gon, r' = r sqrt(2 pi / (N sin(2 pi / N))).
 float areaLightIrradiance(AreaLight L, vec3 p, vec3 n) {
   if (dot(p - L.position, L.direction) <= 0.0) return 0.0;
-  vec3 verts[MAX_POLY];
-  int count = areaLightPolygon(L, p, verts);
-  return polygonIrradiance(verts, count, n);
+  vec3 c = L.position - p;
+  vec3 A, B;
+  vec2 cs;     // (cos t, sin t) of the current vertex
+  vec2 step;   // (cos, sin) of the step angle
+  int count;
+  if (L.disk) {
+    float r = 0.5 * L.size.x * 1.0130;  // N = 16
+    A = r * L.right;
+    B = r * L.up;
+    cs = vec2(1.0, 0.0);
+    step = vec2(0.92387953, 0.38268343);
+    count = DISK_SEGMENTS;
+  } else {
+    A = (0.5 * L.size.x) * L.right;
+    B = (0.5 * L.size.y) * L.up;
+    cs = vec2(-1.0, -1.0);  // unnormalised corner signs: the 90 degree rotation stays exact
+    step = vec2(0.0, 1.0);
+    count = 4;
+  }
+  vec3 first = c + cs.x * A + cs.y * B;
+  vec3 a = first;
+  float da = dot(a, n);
+  float sum = 0.0;
+  bool haveExit = false, haveEnter = false;
+  vec3 exitPt = vec3(0.0), enterPt = vec3(0.0);
+  for (int i = 0; i < DISK_SEGMENTS; ++i) {
+    if (i >= count) break;
+    cs = vec2(cs.x * step.x - cs.y * step.y, cs.x * step.y + cs.y * step.x);
+    vec3 b = i + 1 == count ? first : c + cs.x * A + cs.y * B;
+    float db = dot(b, n);
+    if (da >= 0.0 && db >= 0.0) {
+      sum += edgeTerm(normalize(a), normalize(b), n);
+    } else if (da >= 0.0 || db >= 0.0) {
+      vec3 x = a + (b - a) * (da / (da - db));
+      if (da >= 0.0) {
+        sum += edgeTerm(normalize(a), normalize(x), n);
+        exitPt = x;
+        haveExit = true;
+      } else {
+        sum += edgeTerm(normalize(x), normalize(b), n);
+        enterPt = x;
+        haveEnter = true;
+      }
+    }
+    a = b;
+    da = db;
+  }
+  if (haveExit && haveEnter) sum += edgeTerm(normalize(exitPt), normalize(enterPt), n);
+  return 0.5 * abs(sum);
 }
 
 // Karis' most representative point: where the reflection ray meets the light, clamped to

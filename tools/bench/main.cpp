@@ -36,9 +36,12 @@ struct Row {
   int width, height, frames;
   double firstMs, perFrameMs, totalS;
   size_t triangles;
+  // With --breakdown: milliseconds summed over frames 1..m, per pass, and frame 1's display.
+  double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0, firstDisplayMs = 0;
+  int shadowPasses = 0;
 };
 
-Result<Row> run(const std::string& sceneFile, int w, int h, int frames) {
+Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown) {
   auto sf = loadSceneFile(sceneFile);
   if (!sf) return sf.error();
   auto scene = loadGltf(sf->gltfPath);
@@ -49,7 +52,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames) {
     if (!e) return e.error();
     env = std::move(*e);
   }
-  auto r = Renderer::create({});
+  auto r = Renderer::create({.profilePasses = breakdown});
   if (!r) return r.error();
   RenderSettings s = sf->settings;
   s.width = w;
@@ -69,22 +72,33 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames) {
   (void)(*r)->readDisplay();
   (*r)->restart();
 
+  Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1), w, h, frames, 0, 0, 0,
+          scene->triangleCount()};
+  auto add = [&row](const FrameStats& f) {
+    row.prepassMs += f.prepassMs;
+    row.shadowMs += f.shadowMs;
+    row.lightingMs += f.lightingMs;
+    row.accumulateMs += f.accumulateMs;
+    row.shadowPasses += f.shadowPasses;
+  };
   auto t0 = Clock::now();
   PN_TRY((*r)->step());
+  add((*r)->lastFrame());
+  auto td = Clock::now();
   auto first = (*r)->readDisplay();  // forces completion of frame 1
   auto t1 = Clock::now();
-  while (!(*r)->converged()) PN_TRY((*r)->step());
+  row.firstDisplayMs = ms(td, t1);
+  while (!(*r)->converged()) {
+    PN_TRY((*r)->step());
+    add((*r)->lastFrame());
+  }
   auto done = (*r)->readDisplay();
   auto t2 = Clock::now();
   if (!first || !done) return makeError("read-back failed");
-  return Row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
-             w,
-             h,
-             frames,
-             ms(t0, t1),
-             ms(t1, t2) / std::max(frames - 1, 1),
-             ms(t0, t2) / 1000.0,
-             scene->triangleCount()};
+  row.firstMs = ms(t0, t1);
+  row.perFrameMs = ms(t1, t2) / std::max(frames - 1, 1);
+  row.totalS = ms(t0, t2) / 1000.0;
+  return row;
 }
 
 }  // namespace
@@ -98,6 +112,9 @@ int main(int argc, char** argv) {
   app.add_option("--scene", scenes, "scene files (repeatable)");
   app.add_option("--size", sizes, "resolutions WxH (repeatable)");
   app.add_option("--frames", frames, "intermediate frames m");
+  bool breakdown = false;
+  app.add_flag("--breakdown", breakdown,
+               "also time every pass (waits for the GPU after each, so totals grow a little)");
   CLI11_PARSE(app, argc, argv);
 
   auto ctx = GlContext::create();
@@ -116,13 +133,21 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "penumbra-bench: error: bad size '%s'\n", size.c_str());
         return 1;
       }
-      auto row = run(scene, w, h, frames);
+      auto row = run(scene, w, h, frames, breakdown);
       if (!row) {
         std::fprintf(stderr, "penumbra-bench: error: %s\n", row.message().c_str());
         return 1;
       }
       std::printf("| %s | %zu | %dx%d | %d | %.1f | %.1f | %.2f |\n", row->scene.c_str(),
                   row->triangles, w, h, frames, row->firstMs, row->perFrameMs, row->totalS);
+      if (breakdown) {
+        const double n = frames;
+        std::printf(
+            "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f, "
+            "accumulate %.1f; frame 1 display (tone map + read-back) %.1f | | | | | | |\n",
+            row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
+            row->accumulateMs / n, row->firstDisplayMs);
+      }
       std::fflush(stdout);
     }
   }

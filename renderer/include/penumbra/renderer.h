@@ -21,6 +21,9 @@ namespace penumbra {
 struct RendererOptions {
   bool desktopGl = false;       // GlContext::isDesktopGl()
   bool forceHalfFloat = false;  // accumulate in RGBA16F even where RGBA32F is renderable
+  // Waits for the GPU after every pass and records its time in FrameStats (benchmarks only:
+  // it serialises CPU and GPU work).
+  bool profilePasses = false;
 };
 
 // What the last frame did, for tests, benchmarks and progress displays.
@@ -30,6 +33,8 @@ struct FrameStats {
   int lightingPasses = 0;
   bool prepass = false;
   bool occlusion = false;
+  // Milliseconds per pass, filled only with RendererOptions::profilePasses.
+  double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0;
 };
 
 class Renderer {

@@ -3,6 +3,7 @@
 #include "penumbra/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 
@@ -60,6 +61,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
   FrameStats stats;
   gl::Texture2D dummy2d;
   float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
+  std::chrono::steady_clock::time_point passStart;
+
+  // With profilePasses, finishes the GL work queued since the last call and adds its time.
+  void endPass(double* ms) {
+    if (!options.profilePasses) return;
+    gl::finish();
+    const auto now = std::chrono::steady_clock::now();
+    if (ms) *ms += std::chrono::duration<double, std::milli>(now - passStart).count();
+    passStart = now;
+  }
 
   // With a black environment nothing is visible before direct light: start it at frame 2.
   void updateDarkness() {
@@ -224,6 +235,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Status renderFrame(const FramePlan& plan) override {
     stats = {};
     stats.frame = plan.frame;
+    endPass(nullptr);
     if (plan.frame == 1) targets->current = 0;
     const Camera cam = activeCamera();
     const CameraMatrices cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
@@ -231,6 +243,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (plan.occlusion && (plan.renderPrepass || !prepassValid)) {
       renderPrepass(cameraMatrices(cam, targets->width, targets->height, {0, 0}));
       stats.prepass = true;
+      endPass(&stats.prepassMs);
     }
     stats.occlusion = plan.occlusion && prepassValid;
     const glm::mat4 viewProj = cm.projection * cm.view;
@@ -259,6 +272,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
           views.push_back(shadows->render(static_cast<int>(i), *scene,
                                           samplePosition(l, batch[i]->point), l.direction, l.up));
           ++stats.shadowPasses;
+          endPass(&stats.shadowMs);
         } else {
           views.push_back({});
         }
@@ -266,6 +280,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       PN_TRY(drawLighting(plan, cm, viewProj, b == 0, batch, views,
                           b == 0 ? punctual : std::vector<const LightSample*>{}));
       ++stats.lightingPasses;
+      endPass(&stats.lightingMs);
     }
 
     // Accumulate: mean_n = mean_{n-1} + (x_n - mean_{n-1}) / n.
@@ -279,6 +294,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     acc.set("uCurrent", 1);
     acc.set("uWeight", 1.0f / static_cast<float>(plan.frame));
     accumulate->draw();
+    endPass(&stats.accumulateMs);
     targets->current = next;
     return gl::checkError("frame " + std::to_string(plan.frame));
   }
