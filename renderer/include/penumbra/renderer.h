@@ -60,8 +60,13 @@ class Renderer {
 
   // The running mean of linear radiance (before exposure), RGBA float, row 0 at the top.
   Result<Image> readRadiance();
-  // The displayed image: exposure, tone mapping and sRGB applied, RGBA in [0, 1].
+  // The displayed image: exposure, tone mapping and sRGB applied, RGBA in [0, 1]
+  // (toneMap() followed by a read-back).
   Result<Image> readDisplay();
+  // Applies exposure and tone mapping to the running mean, into an internal 8-bit image.
+  Status toneMap();
+  // Waits until the GL has finished all submitted work (benchmarks time whole frames).
+  void finish();
   // Draws the displayed image (the same exposure, tone-mapping and sRGB pass as readDisplay)
   // into the default framebuffer — the browser canvas — over a canvasWidth x canvasHeight
   // viewport, scaling the accumulated image when the render resolution differs (nearest).

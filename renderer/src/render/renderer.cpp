@@ -29,13 +29,19 @@ constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated
 constexpr int kMaxAreaPerBatch = passes::kMaxShadowMaps;
 constexpr int kMaxPunctual = 8;
 
+// GL rows run bottom-up; Image rows top-down. Flips in place and takes the buffer: a
+// 1280x720 float image is 15 MB, and fresh pages cost more than the copy on some machines.
 Image flipRows(std::vector<float> data, int w, int h, int channels) {
-  Image img(w, h, channels);
-  const size_t row = static_cast<size_t>(w) * channels;
-  for (int y = 0; y < h; ++y) {
-    std::copy_n(data.begin() + static_cast<std::ptrdiff_t>((h - 1 - y) * row), row,
-                img.pixels.begin() + static_cast<std::ptrdiff_t>(y * row));
+  const auto row = static_cast<std::ptrdiff_t>(w) * channels;
+  for (int y = 0; y < h / 2; ++y) {
+    std::swap_ranges(data.begin() + y * row, data.begin() + (y + 1) * row,
+                     data.begin() + (h - 1 - y) * row);
   }
+  Image img;
+  img.width = w;
+  img.height = h;
+  img.channels = channels;
+  img.pixels = std::move(data);
   return img;
 }
 
@@ -482,7 +488,7 @@ Result<Image> Renderer::readRadiance() {
   return flipRows(std::move(data), t.width, t.height, 4);
 }
 
-Result<Image> Renderer::readDisplay() {
+Status Renderer::toneMap() {
   auto& t = *impl_->targets;
   t.display.framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
@@ -492,11 +498,31 @@ Result<Image> Renderer::readDisplay() {
   p.set("uExposureScale", std::exp2(impl_->settings.exposure));
   p.set("uToneMapper", static_cast<int>(impl_->settings.toneMapper));
   impl_->tonemap->draw();
+  return gl::checkError("tone mapping");
+}
+
+void Renderer::finish() {
+  gl::finish();
+}
+
+Result<Image> Renderer::readDisplay() {
+  PN_TRY(toneMap());
+  auto& t = *impl_->targets;
   auto bytes = t.display.framebuffer.readRgba8(0, 0, 0, t.width, t.height);
-  PN_TRY(gl::checkError("tone mapping"));
-  std::vector<float> f(bytes.size());
-  for (size_t i = 0; i < bytes.size(); ++i) f[i] = bytes[i] / 255.0f;
-  return flipRows(std::move(f), t.width, t.height, 4);
+  PN_TRY(gl::checkError("reading the displayed image"));
+  // Converted straight into the flipped float image: one allocation, no intermediate copy.
+  Image img;
+  img.width = t.width;
+  img.height = t.height;
+  img.channels = 4;
+  img.pixels.resize(bytes.size());
+  const size_t row = static_cast<size_t>(t.width) * 4;
+  for (int y = 0; y < t.height; ++y) {
+    const uint8_t* src = bytes.data() + static_cast<size_t>(t.height - 1 - y) * row;
+    float* dst = img.pixels.data() + static_cast<size_t>(y) * row;
+    for (size_t i = 0; i < row; ++i) dst[i] = static_cast<float>(src[i]) * (1.0f / 255.0f);
+  }
+  return img;
 }
 
 Status Renderer::present(int canvasWidth, int canvasHeight) {
