@@ -14,7 +14,9 @@ const int OCCLUSION_STEPS = 4;
 
 // Marches from world point p along unit direction d up to uOcclusionDistance, at steps
 // jittered per frame (so over the frames the march covers the whole segment). Returns true on
-// a hit and the radiance found there (when indirect light is on).
+// a hit and the radiance found there (when indirect light is on). Written without early exits
+// so the loop unrolls into straight-line code: a SIMD software rasterizer runs every lane
+// through every branch anyway, and divergent returns only add mask bookkeeping.
 bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
   hitRadiance = vec3(0.0);
   vec3 vp = (uView * vec4(p, 1.0)).xyz;
@@ -25,32 +27,36 @@ bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
   float stepLength = uOcclusionDistance / float(OCCLUSION_STEPS);
   // A sample that lands in the starting pixel compares the ray with the depth of the very
   // surface it leaves, which only measures depth-buffer discretisation: skip it.
+  ivec2 size = ivec2(uViewportSize);
   ivec2 origin = ivec2((c0.xy / c0.w * 0.5 + 0.5) * uViewportSize);
+  bool done = false;  // hit, or the ray left the screen or passed behind the camera
+  bool hit = false;
+  vec2 hitUv = vec2(0.0);
   for (int i = 0; i < OCCLUSION_STEPS; ++i) {
     float t = stepLength * (float(i) + jitter);
     vec4 clip = c0 + c1 * t;
     float rayDepth = clip.w;  // = -view z for a perspective projection
-    if (rayDepth <= 1e-4) return false;  // behind the camera
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
-    ivec2 texel = ivec2(uv * uViewportSize);
-    if (texel == origin) continue;
+    vec2 uv = clip.xy / max(clip.w, 1e-4) * 0.5 + 0.5;
+    // Once off screen or behind the camera a ray stays there: the march ends.
+    done = done || rayDepth <= 1e-4 || any(lessThan(uv, vec2(0.0))) ||
+           any(greaterThan(uv, vec2(1.0)));
+    ivec2 texel = clamp(ivec2(uv * uViewportSize), ivec2(0), size - 1);
     vec4 g = texelFetch(uPrepass, texel, 0);
     float sceneDepth = g.w;
-    // Occluded when the ray is behind the visible surface, but not by more than the trace
-    // length (a thin-object guess: farther surfaces are assumed not to block).
     // Occluded when the ray is behind the visible surface, but not by more than the trace
     // length (a thin-object guess: farther surfaces are assumed not to block), and when that
     // surface faces the ray: passing behind a surface that faces away from it means the ray
     // is behind the object, where the depth buffer knows nothing.
-    if (sceneDepth > 0.0 && rayDepth > sceneDepth + 0.002 * rayDepth &&
-        rayDepth - sceneDepth < uOcclusionDistance && dot(g.xyz, -vd) > 0.0) {
-      if (uIndirectEnabled) {
-        vec4 acc = texture(uAccumulated, uv);
-        hitRadiance = acc.rgb * saturate(acc.a);
-      }
-      return true;
-    }
+    bool occluded = !done && texel != origin && sceneDepth > 0.0 &&
+                    rayDepth > sceneDepth + 0.002 * rayDepth &&
+                    rayDepth - sceneDepth < uOcclusionDistance && dot(g.xyz, -vd) > 0.0;
+    hitUv = occluded ? uv : hitUv;
+    hit = hit || occluded;
+    done = done || occluded;
   }
-  return false;
+  if (hit && uIndirectEnabled) {
+    vec4 acc = texture(uAccumulated, hitUv);
+    hitRadiance = acc.rgb * saturate(acc.a);
+  }
+  return hit;
 }
