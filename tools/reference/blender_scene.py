@@ -17,6 +17,8 @@ What it does, so that Blender sees what Penumbra sees:
     camera sees the lamp (as in Penumbra) but nothing is lit twice;
   * environment: panorama as world texture (Blender's convention is the one Penumbra uses),
     strength = intensity, rotation about +Y (glTF) = about +Z (Blender); or a uniform colour;
+  * materials: glTF's BRDF rebuilt from Blender nodes (gltf_brdf.py; --material principled
+    keeps the importer's Principled BSDF);
   * Standard view transform, no denoising, box pixel filter 1 px (Penumbra's jittered running
     mean), linear 32-bit EXR, render time written to OUT.json.
 """
@@ -45,6 +47,8 @@ def parse_args():
     ap.add_argument("--size", default=None)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--material", choices=["gltf", "principled"], default="gltf",
+                    help="gltf: glTF's BRDF as a node tree (default); principled: the importer's")
     return ap.parse_args(argv)
 
 
@@ -125,6 +129,11 @@ def main():
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     bpy.ops.import_scene.gltf(filepath=sf["gltf"])
+    rebuilt = 0
+    if a.material == "gltf":
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        from gltf_brdf import use_gltf_brdf
+        rebuilt = use_gltf_brdf()
 
     # ---- output size
     if a.size:
@@ -291,7 +300,8 @@ def main():
     info = {"engine": a.engine, "samples": a.samples, "size": [w, h], "threads": a.threads,
             "render_seconds": round(t1 - t0, 3), "scene": os.path.abspath(a.scene),
             "camera_node": g["nodes"][cam_node].get("name"), "proxies_camera_only": nproxy,
-            "lights": made, "blender": bpy.app.version_string}
+            "lights": made, "blender": bpy.app.version_string, "material": a.material,
+            "materials_rebuilt": rebuilt}
     with open(os.path.splitext(os.path.abspath(a.out))[0] + ".json", "w") as f:
         json.dump(info, f, indent=1)
     print("PENUMBRA_REF", json.dumps(info))

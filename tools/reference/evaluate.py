@@ -14,14 +14,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-# name -> (scene file, evaluation size, Cycles samples)
+# name -> scene file
 SCENES = {
-    "cornell_box": ("assets/cornell_box/cornell_box.json", "320x320", 128),
-    "material_grid": ("assets/material_grid/material_grid.json", "400x300", 128),
-    "kitchen": ("assets/kitchen/kitchen.json", "480x270", 128),
-    "product": ("assets/product/product.json", "480x320", 128),
-    "dense": ("assets/dense/dense.json", "480x270", 128),
+    "cornell_box": "assets/cornell_box/cornell_box.json",
+    "material_grid": "assets/material_grid/material_grid.json",
+    "kitchen": "assets/kitchen/kitchen.json",
+    "product": "assets/product/product.json",
+    "dense": "assets/dense/dense.json",
 }
+SIZE = "1280x720"
+CYCLES_SAMPLES = 128  # the reference (seed 2)
+CYCLES_CHECK_SAMPLES = 32  # an independent Cycles render (seed 1): the path tracer at a budget
 EEVEE_SAMPLES = 64
 
 
@@ -114,9 +117,12 @@ def run_penumbra(binary, scene, out, size, frames, seed=1):
     return dt
 
 
-def ref_command(scene, cache_dir, size, samples):
-    return "tools/reference/render %s %s --samples %d --eevee-samples %d --size %s" % (
-        scene, cache_dir, samples, EEVEE_SAMPLES, size)
+def ref_commands(scene, cache_dir, size, samples=CYCLES_SAMPLES):
+    """The Blender runs behind one scene's cache: reference, independent Cycles, Eevee."""
+    base = "tools/reference/render %s %s --size %s " % (scene, cache_dir, size)
+    return [base + "--only cycles --samples %d --seed 2" % samples,
+            base + "--only cycles --samples %d --seed 1 --name cycles_seed2" % CYCLES_CHECK_SAMPLES,
+            base + "--only eevee --eevee-samples %d" % EEVEE_SAMPLES]
 
 
 # ---------------------------------------------------------------- figures
@@ -179,6 +185,7 @@ def main():
     ap.add_argument("--render", default=None, help="penumbra-render binary")
     ap.add_argument("--out", default="docs/evaluation")
     ap.add_argument("--cache", default="eval-cache")
+    ap.add_argument("--size", default=SIZE, help="image size WxH (the cache has one folder per size)")
     ap.add_argument("--report-only", action="store_true",
                     help="rewrite README.md from the last run's results.json (no rendering)")
     a = ap.parse_args()
@@ -198,14 +205,18 @@ def main():
     skipped = []
     # one untimed warm-up so Mesa's shader cache is filled (timings are warm)
     first = SCENES[a.scenes.split(",")[0]]
-    run_penumbra(binary, first[0], "/tmp/penumbra_eval_warmup.exr", "64x64", 1)
+    run_penumbra(binary, first, "/tmp/penumbra_eval_warmup.exr", "64x64", 1)
+    size = a.size
     for name in a.scenes.split(","):
-        scene, size, samples = SCENES[name]
-        cache = os.path.join(a.cache, name)
-        cyc, eev = os.path.join(cache, "cycles.exr"), os.path.join(cache, "eevee.exr")
+        scene = SCENES[name]
+        cache = os.path.join(a.cache, size, name)
+        outputs = [os.path.join(cache, f + ".exr") for f in ("cycles", "cycles_seed2", "eevee")]
+        cyc, eev = outputs[0], outputs[2]
         if not os.path.exists(cyc) or not os.path.exists(eev):
             if a.render_refs:
-                subprocess.run(shlex.split(ref_command(scene, cache, size, samples)), check=True)
+                for out, cmd in zip(outputs, ref_commands(scene, cache, size)):
+                    if not os.path.exists(out):
+                        subprocess.run(shlex.split(cmd), check=True)
             else:
                 skipped.append(name)
                 print("evaluate: %s: no cached reference in %s, skipped (--render-refs makes it)" % (name, cache))
@@ -241,7 +252,7 @@ def main():
                          rmse=0.0, mae_tm=0.0, ssim=1.0))
         results[name] = {"scene": scene, "size": size, "exposure": exposure, "rows": rows,
                          "cycles": cinfo, "eevee": einfo,
-                         "ref_command": ref_command(scene, cache, size, cinfo["samples"]),
+                         "ref_commands": ref_commands(scene, cache, size, cinfo["samples"]),
                          "ref_mean": [float(v) for v in ref.mean(axis=(0, 1))],
                          "pen_mean": [float(v) for v in images[max(frames)].mean(axis=(0, 1))],
                          "eevee_mean": [float(v) for v in eimg.mean(axis=(0, 1))]}
@@ -271,23 +282,30 @@ def write_report(a, results, skipped, frames, when):
     L.append("")
     L.append("```\ntools/evaluate            # --render-refs also makes missing references\n```")
     L.append("")
-    L.append("**Setup.** Each scene is rendered at a reduced size (below) on this 2-core machine, shared "
-             "with other work (timings are noisy; everything ran under `nice -n 15`). Penumbra runs "
-             "`penumbra-render SCENE --size WxH --frames K` once per K (a K-frame budget is a "
-             "complete progressive render of K frames, not frame K of a longer one) on llvmpipe "
-             "(software GL, EGL surfaceless), writing linear EXR; its time is the wall time of the "
-             "whole process (start-up, scene and environment loading, prefiltering, shader set-up and "
-             "K frames), with the Mesa shader cache warm. Blender's times are `bpy.ops.render.render` "
-             "only (Blender start-up and glTF import excluded), 2 threads. The reference is Cycles "
-             "(CPU, no denoiser, box filter 1 px, default light paths: 12 bounces, indirect clamp 10); "
-             "the peer is Eevee at %d samples with soft shadows, GTAO (distance = the scene's "
-             "occlusion distance) and screen-space reflections, without a baked light cache (so no "
-             "indirect diffuse light)." % EEVEE_SAMPLES)
+    sizes = " and ".join(sorted({r["size"] for r in results.values()}))
+    L.append("**Setup.** Every scene is rendered at %s on this 2-core machine (everything ran "
+             "under `nice -n 15` on an otherwise lightly used machine; timings vary by about 20 %%). "
+             "Penumbra runs `penumbra-render SCENE --size WxH --frames K` once per K (a K-frame "
+             "budget is a complete progressive render of K frames, not frame K of a longer one) on "
+             "llvmpipe (software GL, EGL surfaceless), writing linear EXR; its time is the wall time "
+             "of the whole process (start-up, scene and environment loading, prefiltering, shader "
+             "set-up and K frames), with the Mesa shader cache warm. Blender's times are "
+             "`bpy.ops.render.render` only (Blender start-up and glTF import excluded), 2 threads. "
+             "Both Blender engines render glTF's BRDF (Lambert diffuse, GGX specular, Fresnel mix, "
+             "metallic mix; `tools/reference/gltf_brdf.py`) instead of the importer's Principled "
+             "BSDF, whose Disney diffuse is not glTF's, so the numbers compare rendering, not "
+             "material models. The reference is Cycles (CPU, no denoiser, box filter 1 px, default "
+             "light paths: 12 bounces, indirect clamp 10); the peer is Eevee at %d samples with "
+             "soft shadows, GTAO (distance = the scene's occlusion distance) and screen-space "
+             "reflections, without a baked light cache (so no indirect diffuse light). A second, "
+             "independent Cycles render (another seed, fewer samples) shows what the path tracer "
+             "itself reaches in about Penumbra's time, and bounds how much of every error is the "
+             "reference's own noise." % (sizes, EEVEE_SAMPLES))
     L.append("")
     L.append("**Metrics** against the Cycles image: RMSE of linear RGB radiance; MAE of the displayed "
              "images (scene exposure, Khronos PBR Neutral, sRGB; 0..1); SSIM (11x11 Gaussian window, "
              "sigma 1.5) on the luminance of the displayed images. The Cycles image carries its own "
-             "Monte Carlo noise at the sample count used, so no renderer can reach RMSE 0 / SSIM 1. "
+             "Monte Carlo noise, so no renderer can reach RMSE 0 / SSIM 1. "
              "The last column (Penumbra only) is the RMSE to Penumbra's own longest render: how far "
              "it still is from what it converges to, apart from its bias.")
     L.append("")
@@ -302,7 +320,7 @@ def write_report(a, results, skipped, frames, when):
             else:
                 L.append("| %s | %d | %.1f | %.4f | %.4f | %.3f | %s |" % (
                     {"penumbra": "Penumbra", "eevee": "Eevee",
-                     "cycles2": "Cycles, other seed (noise floor)"}[row["renderer"]], row["frames"],
+                     "cycles2": "Cycles, independent render"}[row["renderer"]], row["frames"],
                     row["seconds"], row["rmse"], row["mae_tm"], row["ssim"],
                     "%.4f" % row["rmse_self"] if "rmse_self" in row else ""))
         L.append("")
@@ -313,7 +331,8 @@ def write_report(a, results, skipped, frames, when):
         L.append("")
         L.append("![%s: Penumbra 1/16/128 frames, Eevee, Cycles, difference](%s_strip.png)" % (name, name))
         L.append("")
-        L.append("Reference: `%s`" % r["ref_command"])
+        cmds = r.get("ref_commands") or [r["ref_command"]]
+        L.append("Blender renders: " + "; ".join("`%s`" % c for c in cmds))
         L.append("")
     if skipped:
         L.append("Not evaluated (no cached reference): %s." % ", ".join(skipped))
@@ -355,10 +374,12 @@ def unit_check(a):
          "| Cycles (P = 4 L A = 40 W, 256 spp) | %.4f |" % vc]
     if ve is not None:
         s.append("| Eevee (64 samples) | %.4f |" % ve)
-    s += ["", "Penumbra / Cycles = %.4f. The glTF material is not pure Lambert in either renderer "
-          "(dielectric F0 = 0.04 GGX lobe at roughness 1 in both; Blender's Principled BSDF also uses a "
-          "Disney diffuse, brighter than Lambert at these angles), which accounts for the percent-level "
-          "difference; a unit error would be a factor of 4/pi = 1.27 or pi. Remake: "
+    s += ["", "Penumbra / Cycles = %.4f. Both Blender renders use glTF's BRDF rebuilt from nodes "
+          "(`tools/reference/gltf_brdf.py`: Lambert diffuse and a GGX layer mixed by the Fresnel "
+          "term at the shading normal), so neither is pure Lambert: the plane keeps 96 %% of the "
+          "Lambert value as diffuse and adds a rough specular lobe, which Penumbra's split-sum "
+          "albedo scaling and Blender's Fresnel mix weigh slightly differently (percent level); "
+          "a unit error would be a factor of 4/pi = 1.27 or pi. Remake: "
           "`/usr/bin/python3 tools/reference/make_unit_scene.py eval-cache/unit && "
           "build/tools/render/penumbra-render eval-cache/unit/unit.json -o eval-cache/unit/penumbra.exr && "
           "tools/reference/render eval-cache/unit/unit.json eval-cache/unit --samples 256`." % (vp / vc), ""]
