@@ -20,7 +20,7 @@
 const int MAX_AREA = 8;
 const int MAX_PUNCTUAL = 8;
 
-uniform vec3 uCameraPos;
+uniform vec4 uViewOrigin;  // (camera position, 1), or (direction to the viewer, 0) if orthographic
 uniform float uEnvWeight;  // weight of the environment term in this frame (0 or 1)
 
 uniform int uAreaCount;
@@ -41,7 +41,7 @@ uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_p
 out vec4 fragColor;
 
 void main() {
-  vec3 v = normalize(uCameraPos - vWorldPos);
+  vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
   SurfaceInputs s = readSurface(v);
   vec3 n = s.normal;
   float NoV = max(dot(n, v), 1e-4);

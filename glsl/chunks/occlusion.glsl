@@ -35,7 +35,7 @@ bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
   for (int i = 0; i < OCCLUSION_STEPS; ++i) {
     float t = stepLength * (float(i) + jitter);
     vec4 clip = c0 + c1 * t;
-    float rayDepth = clip.w;  // = -view z for a perspective projection
+    float rayDepth = -(vp.z + vd.z * t);  // linear view depth, as the prepass stores it
     vec2 uv = clip.xy / max(clip.w, 1e-4) * 0.5 + 0.5;
     // Once off screen or behind the camera a ray stays there: the march ends.
     done = done || rayDepth <= 1e-4 || any(lessThan(uv, vec2(0.0))) ||

@@ -1,5 +1,6 @@
 // The progressive renderer end to end: white furnace, goldens, the sample schedule as seen
 // in the passes it issues, convergence, determinism and the half-float path.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -76,6 +77,42 @@ TEST_F(RendererGLTest, WhiteFurnaceLambertianSphereShowsTheEnvironment) {
       }
     }
     EXPECT_GT(checked, 700);
+  }
+}
+
+// An orthographic camera (ymag 2 on a 64-pixel-high image: 16 pixels per unit) sees a unit
+// sphere as a disk of radius 16 pixels at the image centre, whatever its distance.
+TEST_F(RendererGLTest, OrthographicCameraShowsASphereAtItsTrueSize) {
+  Scene s;
+  s.materials.push_back(lambert(glm::vec3(0.25f)));
+  s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
+  finishScene(s);
+  for (float distance : {3.0f, 8.0f}) {
+    Camera cam = lookAtCamera({0, 0, distance}, {0, 0, 0}, 20.0f);
+    cam.orthographic = true;
+    cam.ymag = 2.0f;
+    cam.znear = 0.1f;
+    cam.zfar = 20.0f;
+    RenderSettings rs;
+    rs.width = rs.height = 64;
+    rs.progressive.frames = 16;
+    auto img = renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)), cam, rs);
+    ASSERT_TRUE(img.ok()) << img.message();
+    // Coverage per pixel from its radiance: background 1, sphere (a white furnace) uniform.
+    const float inside = img->pixel(32, 32)[1];
+    ASSERT_LT(inside, 0.5f);
+    double area = 0.0, cx = 0.0, cy = 0.0;
+    for (int y = 0; y < 64; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        const double c = std::clamp((1.0 - img->pixel(x, y)[1]) / (1.0 - inside), 0.0, 1.0);
+        area += c;
+        cx += c * (x + 0.5);
+        cy += c * (y + 0.5);
+      }
+    }
+    EXPECT_NEAR(area, M_PI * 16.0 * 16.0, 0.02 * M_PI * 256.0) << "distance " << distance;
+    EXPECT_NEAR(cx / area, 32.0, 0.25) << "distance " << distance;
+    EXPECT_NEAR(cy / area, 32.0, 0.25) << "distance " << distance;
   }
 }
 

@@ -29,7 +29,7 @@ TEST(SceneGltfCamera, CamerasFromNodesWithoutScale) {
   b.push("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.01}}}});
   b.push("cameras", {{"name", "ortho"},
                      {"type", "orthographic"},
-                     {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}});
+                     {"orthographic", {{"xmag", 3}, {"ymag", 2}, {"znear", 0.1}, {"zfar", 10}}}});
   // Scaled and rotated 90 degrees about +Y: the camera looks down world -X.
   const int a = b.node({{"camera", 0},
                         {"translation", {0, 1, 5}},
@@ -40,8 +40,8 @@ TEST(SceneGltfCamera, CamerasFromNodesWithoutScale) {
   b.scene({a, c, o});
   auto scene = b.load();
   ASSERT_TRUE(scene.ok()) << scene.message();
-  ASSERT_EQ(scene->cameras.size(), 2u);
-  EXPECT_TRUE(hasWarning(*scene, "orthographic"));
+  ASSERT_EQ(scene->cameras.size(), 3u);
+  EXPECT_FALSE(hasWarning(*scene, "orthographic"));
 
   const Camera& wide = scene->cameras[0];
   EXPECT_EQ(wide.name, "wide");
@@ -59,6 +59,15 @@ TEST(SceneGltfCamera, CamerasFromNodesWithoutScale) {
   EXPECT_EQ(unnamed.name, "nodecam");  // falls back to the node's name
   EXPECT_EQ(unnamed.aspect, 0.0f);
   EXPECT_EQ(unnamed.zfar, 0.0f);
+  EXPECT_FALSE(unnamed.orthographic);
+
+  const Camera& ortho = scene->cameras[2];
+  EXPECT_EQ(ortho.name, "ortho");
+  EXPECT_TRUE(ortho.orthographic);
+  EXPECT_FLOAT_EQ(ortho.ymag, 2.0f);
+  EXPECT_FLOAT_EQ(ortho.aspect, 1.5f);  // xmag / ymag
+  EXPECT_FLOAT_EQ(ortho.znear, 0.1f);
+  EXPECT_FLOAT_EQ(ortho.zfar, 10.0f);
 
   auto byName = findCamera(*scene, "nodecam");
   ASSERT_TRUE(byName.ok()) << byName.message();
@@ -73,6 +82,19 @@ TEST(SceneGltfCamera, CamerasFromNodesWithoutScale) {
   EXPECT_THAT(missing.message(), HasSubstr("nodecam"));
   EXPECT_FALSE(findCamera(*scene, "7").ok());
   EXPECT_THAT(findCamera(Scene{}, "x").message(), HasSubstr("no cameras"));
+}
+
+TEST(SceneGltfCamera, OrthographicCameraNeedsAPositiveExtentAndDepthRange) {
+  for (const auto& bad : {nlohmann::json{{"xmag", 1}, {"ymag", 0}, {"znear", 0}, {"zfar", 1}},
+                          nlohmann::json{{"xmag", 1}, {"ymag", 1}, {"znear", 2}, {"zfar", 1}},
+                          nlohmann::json{{"xmag", 1}, {"ymag", 1}, {"znear", 0}}}) {
+    GltfBuilder b;
+    b.push("cameras", {{"type", "orthographic"}, {"orthographic", bad}});
+    b.scene({b.node({{"camera", 0}})});
+    auto scene = b.load();
+    ASSERT_FALSE(scene.ok()) << bad.dump();
+    EXPECT_THAT(scene.message(), HasSubstr("cameras[0].orthographic")) << scene.message();
+  }
 }
 
 TEST(SceneGltfCamera, DefaultCameraFramesTheBounds) {

@@ -165,13 +165,21 @@ def main():
     if cam_node is None:
         raise SystemExit("no camera in the glTF: Penumbra's automatic framing is not reproduced")
     gcam = g["cameras"][g["nodes"][cam_node]["camera"]]
-    persp = gcam["perspective"]
     cdata = bpy.data.cameras.new("penumbra_camera")
     cdata.sensor_fit = "VERTICAL"
     cdata.sensor_height = 24.0
-    cdata.angle_y = persp["yfov"]
-    cdata.clip_start = persp.get("znear", 0.01)
-    cdata.clip_end = persp.get("zfar", 1000.0)
+    if gcam.get("type") == "orthographic":
+        # Penumbra keeps ymag (half the height) and takes the width from the image's aspect.
+        ortho = gcam["orthographic"]
+        cdata.type = "ORTHO"
+        cdata.ortho_scale = 2.0 * ortho["ymag"]
+        cdata.clip_start = max(ortho.get("znear", 0.0), 1e-4)
+        cdata.clip_end = ortho["zfar"]
+    else:
+        persp = gcam["perspective"]
+        cdata.angle_y = persp["yfov"]
+        cdata.clip_start = persp.get("znear", 0.01)
+        cdata.clip_end = persp.get("zfar", 1000.0)
     cobj = bpy.data.objects.new("penumbra_camera", cdata)
     scene.collection.objects.link(cobj)
     cobj.matrix_world = to_blender(worlds[cam_node])

@@ -99,7 +99,9 @@ json cameraJson(const Camera& c) {
           {"forward", vec3Json(-glm::vec3(c.world[2]))},
           {"up", vec3Json(glm::vec3(c.world[1]))},
           {"yfov", c.yfov},
-          {"znear", c.znear}};
+          {"znear", c.znear},
+          {"orthographic", c.orthographic},
+          {"ymag", c.ymag}};
 }
 
 json stateJson(const Viewer& v) {

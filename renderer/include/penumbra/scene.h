@@ -113,10 +113,14 @@ struct Instance {
 struct Camera {
   std::string name;
   glm::mat4 world{1.0f};  // camera-to-world; the camera looks down its local -Z
-  float yfov = 0.8f;      // radians
+  float yfov = 0.8f;      // radians (perspective)
   float aspect = 0.0f;    // 0 = take the viewport's
   float znear = 0.05f;
-  float zfar = 0.0f;  // 0 = infinite
+  float zfar = 0.0f;  // 0 = infinite (perspective only)
+  // glTF orthographic camera: ymag is half the view's height in world units; the width follows
+  // the viewport's aspect ratio (as for perspective cameras, the viewport wins over xmag).
+  bool orthographic = false;
+  float ymag = 1.0f;
 };
 
 enum class LightType { Rect, Disk, Point, Spot, Directional };

@@ -17,12 +17,23 @@ CameraMatrices cameraMatrices(const Camera& camera, int width, int height, glm::
   m.position = glm::vec3(world[3]);
   m.view = glm::inverse(world);
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  const glm::vec2 offset = 2.0f * jitter / glm::vec2(width, std::max(height, 1));
+  if (camera.orthographic) {
+    const float h = camera.ymag, w = camera.ymag * aspect;
+    m.projection = glm::ortho(-w, w, -h, h, std::max(camera.znear, 0.0f), camera.zfar);
+    // w = 1: the offset goes into the translation, with the same sign as below.
+    m.projection[3][0] -= offset.x;
+    m.projection[3][1] -= offset.y;
+    m.viewOrigin = glm::vec4(glm::vec3(world[2]), 0.0f);
+    return m;
+  }
   const float znear = camera.znear > 0.0f ? camera.znear : 0.01f;
   m.projection = camera.zfar > znear ? glm::perspective(camera.yfov, aspect, znear, camera.zfar)
                                      : glm::infinitePerspective(camera.yfov, aspect, znear);
   // A clip-space offset of 2 * pixels / size moves the image by `pixels`.
-  m.projection[2][0] += 2.0f * jitter.x / static_cast<float>(width);
-  m.projection[2][1] += 2.0f * jitter.y / static_cast<float>(height);
+  m.projection[2][0] += offset.x;
+  m.projection[2][1] += offset.y;
+  m.viewOrigin = glm::vec4(m.position, 1.0f);
   return m;
 }
 

@@ -212,7 +212,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const gl::Program& p = *lighting;
     p.use();
     p.set("uViewProj", jitteredViewProj);
-    p.set("uCameraPos", cm.position);
+    p.set("uViewOrigin", cm.viewOrigin);
     environment->bind(p, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
     // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
     p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect ? 1 : 0);
@@ -407,7 +407,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (first && !scene->blended().empty()) {
       std::vector<DrawItem> sorted = scene->blended();
       std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& a, const DrawItem& b) {
-        return glm::distance(a.center, cm.position) > glm::distance(b.center, cm.position);
+        // Back to front: by distance from the eye, or along the parallel rays (orthographic).
+        auto far = [&](const glm::vec3& c) {
+          return cm.viewOrigin.w > 0.5f ? glm::distance(c, cm.position)
+                                        : -glm::dot(c, glm::vec3(cm.viewOrigin));
+        };
+        return far(a.center) > far(b.center);
       });
       drawList(p, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
     }

@@ -175,6 +175,7 @@ struct CameraDesc {
   float aspect = 0.0f;
   float znear = 0.05f;
   float zfar = 0.0f;
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic
 };
 
 struct LightDesc {

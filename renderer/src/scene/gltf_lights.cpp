@@ -32,10 +32,6 @@ void addNodeCamera(const Document& doc, const NodeDesc& node, const glm::mat4& w
   Camera cam;
   cam.name = !desc.name.empty() ? desc.name : node.name;
   if (cam.name.empty()) cam.name = "camera " + std::to_string(node.camera);
-  if (!desc.perspective) {
-    ctx.warn("camera '" + cam.name + "' is orthographic, which is not supported; skipped");
-    return;
-  }
   // Remove scale (and shear) but keep where the camera looks (-Z) and its up (+Y); X is
   // rebuilt so the frame is a proper right-handed rotation even under a mirroring parent.
   const glm::vec3 z = unit(glm::vec3(world[2]));
@@ -47,9 +43,11 @@ void addNodeCamera(const Document& doc, const NodeDesc& node, const glm::mat4& w
   const glm::vec3 x = glm::cross(y, z);
   cam.world = glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), world[3]);
   cam.yfov = desc.yfov;
-  cam.aspect = desc.aspect;
+  cam.aspect = desc.perspective ? desc.aspect : std::abs(desc.xmag / desc.ymag);
   cam.znear = desc.znear;
   cam.zfar = desc.zfar;
+  cam.orthographic = !desc.perspective;
+  cam.ymag = desc.ymag;
   scene.cameras.push_back(cam);
 }
 

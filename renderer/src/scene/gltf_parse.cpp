@@ -437,6 +437,20 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       }
     } else if (type == "orthographic") {
       c.perspective = false;
+      const json* ortho = p.object(o, "orthographic", path);
+      if (!ortho) {
+        p.fail(path, "missing 'orthographic'");
+      } else {
+        const std::string op = path + ".orthographic";
+        c.xmag = static_cast<float>(p.number(*ortho, "xmag", op, 1.0, true));
+        c.ymag = static_cast<float>(p.number(*ortho, "ymag", op, 1.0, true));
+        c.znear = static_cast<float>(p.number(*ortho, "znear", op, 0.0, true));
+        c.zfar = static_cast<float>(p.number(*ortho, "zfar", op, 1.0, true));
+        if (!p.failed() && (!(c.xmag != 0.0f) || !(c.ymag > 0.0f) || !(c.znear >= 0.0f) ||
+                            !(c.zfar > c.znear) || !std::isfinite(c.zfar))) {
+          p.fail(op, "needs xmag != 0, ymag > 0 and 0 <= znear < zfar");
+        }
+      }
     } else if (!p.failed()) {
       p.fail(path + ".type", "unknown camera type '" + type + "'");
     }
