@@ -75,7 +75,13 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   (void)(*r)->readDisplay();
   (*r)->restart();
 
-  Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1), w, h, frames, 0, 0, 0,
+  Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
+          w,
+          h,
+          frames,
+          0,
+          0,
+          0,
           scene->triangleCount()};
   auto add = [&row](const FrameStats& f) {
     row.prepassMs += f.prepassMs;
@@ -158,9 +164,11 @@ int main(int argc, char** argv) {
         const double n = frames;
         std::printf(
             "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f, "
-            "accumulate %.1f; frame 1: lighting %.1f, accumulate %.1f, tone map %.1f | | | | | | | |\n",
+            "accumulate %.1f; frame 1: lighting %.1f, accumulate %.1f, tone map %.1f | | | | | | | "
+            "|\n",
             row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
-            row->accumulateMs / n, row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
+            row->accumulateMs / n, row->firstLightingMs, row->firstAccumulateMs,
+            row->firstDisplayMs);
       }
       std::fflush(stdout);
     }
