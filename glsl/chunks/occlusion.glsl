@@ -3,6 +3,7 @@
 // environment light; with screen-space indirect on, it adds the radiance already accumulated
 // at the hit instead (one bounce, as the paper's public demo does).
 uniform bool uIndirectEnabled;
+uniform float uIndirectClamp;  // largest radiance (max over RGB) one sample brings back
 uniform sampler2D uPrepass;      // xyz view-space normal, w linear depth (0 = background)
 uniform sampler2D uAccumulated;  // running mean so far (linear radiance)
 uniform float uOcclusionDistance;
@@ -56,7 +57,10 @@ bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
   }
   if (hit && uIndirectEnabled) {
     vec4 acc = texture(uAccumulated, hitUv);
-    hitRadiance = acc.rgb * saturate(acc.a);
+    hitRadiance = max(acc.rgb, vec3(0.0)) * saturate(acc.a);
+    // Clamped like a path tracer's indirect samples: scaled so no channel exceeds the limit.
+    float peak = max(hitRadiance.r, max(hitRadiance.g, hitRadiance.b));
+    if (peak > uIndirectClamp) hitRadiance *= uIndirectClamp / peak;
   }
   return hit;
 }

@@ -116,6 +116,30 @@ TEST_F(RendererGLTest, OrthographicCameraShowsASphereAtItsTrueSize) {
   }
 }
 
+// The Cornell box ceiling sees no direct light (the lamp faces down): all of it comes from
+// screen-space indirect samples, so clamping their radiance darkens it, and the clamp's
+// default (10) leaves this scene, whose bounce light is far below it, unchanged.
+TEST_F(RendererGLTest, IndirectClampLimitsScreenSpaceBounceLight) {
+  auto ceiling = [](float clamp) {
+    Loaded l = loadCornell(64, 24);
+    l.settings.progressive.indirectClamp = clamp;
+    auto r = makeRenderer(l);
+    runToEnd(*r);
+    auto img = r->readRadiance();
+    EXPECT_TRUE(img.ok());
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 2; y < 8; ++y) {  // a band of ceiling beside the lamp
+      for (int x = 8; x < 20; ++x, ++n) sum += img->pixel(x, y)[0];
+    }
+    return sum / n;
+  };
+  const double unclamped = ceiling(0.0f), byDefault = ceiling(10.0f), tight = ceiling(0.002f);
+  EXPECT_GT(unclamped, 0.01);
+  EXPECT_NEAR(byDefault, unclamped, 1e-6);
+  EXPECT_LT(tight, 0.25 * unclamped);
+}
+
 TEST_F(RendererGLTest, CornellBoxConvergedMatchesGolden) {
   Loaded l = loadCornell(96, 128);
   auto r = makeRenderer(l);

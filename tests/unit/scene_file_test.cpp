@@ -17,7 +17,7 @@ TEST(SceneFileTest, ReadsEveryField) {
     "toneMapper": "aces",
     "background": {"show": false, "blur": 0.25},
     "progressive": {"frames": 256, "fd": 0.5, "occlusionDistance": 0.75, "lightSamples": 32,
-                    "shadowMapSize": 512, "screenSpaceIndirect": false, "seed": 7}
+                    "shadowMapSize": 512, "screenSpaceIndirect": false, "indirectClamp": 4, "seed": 7}
   })",
                            "/scenes", "test.json");
   ASSERT_TRUE(sf.ok()) << sf.message();
@@ -39,6 +39,7 @@ TEST(SceneFileTest, ReadsEveryField) {
   EXPECT_EQ(s.progressive.lightSamples, 32);
   EXPECT_EQ(s.progressive.shadowMapSize, 512);
   EXPECT_FALSE(s.progressive.screenSpaceIndirect);
+  EXPECT_FLOAT_EQ(s.progressive.indirectClamp, 4.0f);
   EXPECT_EQ(s.progressive.seed, 7u);
   EXPECT_TRUE(sf->warnings.empty());
 }
@@ -78,6 +79,7 @@ TEST(SceneFileTest, BadInputIsAOneLineError) {
       {R"({"gltf": "a", "progressive": {"frames": 5000}})", "frames"},
       {R"({"gltf": "a", "progressive": {"fd": 1.5}})", "fd"},
       {R"({"gltf": "a", "progressive": {"shadowMapSize": 1000}})", "shadow-map size"},
+      {R"({"gltf": "a", "progressive": {"indirectClamp": -1}})", "indirect clamp"},
       {R"({"gltf": "a", "environment": 5})", "environment"},
       {R"({"gltf": "a", "environment": {"uniform": [1, 2]}})", "uniform"},
   };

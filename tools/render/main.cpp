@@ -106,6 +106,9 @@ int main(int argc, char** argv) {
                                     "shadow-map samples per area light (0 = auto)");
   auto* shadowOpt = app.add_option("--shadow-size", shadowSize, "shadow-map size (power of two)");
   app.add_flag("--no-ssgi", noSsgi, "turn off one-bounce screen-space indirect light");
+  float indirectClamp = 0;
+  auto* clampOpt = app.add_option("--indirect-clamp", indirectClamp,
+                                  "largest radiance of one indirect sample (0 = no limit)");
   auto* seedOpt = app.add_option("--seed", seed, "seed of the sample sequences");
   app.add_option("--save-every", saveEvery, "also write OUT_fNNNN.png every K frames");
   app.add_option("--contact-sheet", contactPath, "write frames 1, 2, 4, ... m side by side");
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
   if (*samplesOpt) s.progressive.lightSamples = lightSamples;
   if (*shadowOpt) s.progressive.shadowMapSize = shadowSize;
   if (noSsgi) s.progressive.screenSpaceIndirect = false;
+  if (*clampOpt) s.progressive.indirectClamp = indirectClamp;
   if (*seedOpt) s.progressive.seed = seed;
   if (!envPath.empty()) sf.environmentPath = envPath;
   if (!cameraName.empty()) sf.camera = cameraName;

@@ -22,6 +22,8 @@ export interface Settings {
   toneMapper?: ToneMapper;
   /** One-bounce screen-space indirect light. */
   screenSpaceIndirect?: boolean;
+  /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */
+  indirectClamp?: number;
   /** Shadow-map samples per area light; 0 = automatic. */
   lightSamples?: number;
   shadowMapSize?: number;

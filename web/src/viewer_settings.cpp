@@ -24,6 +24,7 @@ json settingsToJson(const RenderSettings& s) {
           {"lightSamples", p.lightSamples},
           {"shadowMapSize", p.shadowMapSize},
           {"screenSpaceIndirect", p.screenSpaceIndirect},
+          {"indirectClamp", p.indirectClamp},
           {"seed", p.seed}};
 }
 
@@ -70,7 +71,7 @@ Result<RenderSettings> mergeSettings(const RenderSettings& base, const json& cha
       "width",  "height",       "exposure",           "toneMapper",        "environmentIntensity",
       "environmentRotation",    "showBackground",     "backgroundBlur",    "frames",
       "fd",     "occlusionDistance", "lightSamples",  "shadowMapSize",     "screenSpaceIndirect",
-      "seed"};
+      "indirectClamp", "seed"};
   for (const auto& [key, value] : changes.items()) {
     bool known = false;
     for (const char* k : kKnown) known = known || key == k;
@@ -91,6 +92,7 @@ Result<RenderSettings> mergeSettings(const RenderSettings& base, const json& cha
   PN_TRY(take(changes, "lightSamples", p.lightSamples));
   PN_TRY(take(changes, "shadowMapSize", p.shadowMapSize));
   PN_TRY(take(changes, "screenSpaceIndirect", p.screenSpaceIndirect));
+  PN_TRY(take(changes, "indirectClamp", p.indirectClamp));
   PN_TRY(take(changes, "seed", p.seed));
   if (auto it = changes.find("toneMapper"); it != changes.end() && !it->is_null()) {
     if (!it->is_string()) return makeError("setting 'toneMapper' must be a name");

@@ -25,6 +25,10 @@ struct ProgressiveSettings {
   int lightSamples = 0;            // shadow-map samples per area light; 0 = automatic
   int shadowMapSize = 1024;
   bool screenSpaceIndirect = true;  // one-bounce screen-space indirect light
+  // Largest radiance one screen-space indirect sample may bring back (0 = no limit): a ray
+  // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
+  // default indirect clamp of Cycles, the reference the evaluation compares against.
+  float indirectClamp = 10.0f;
   uint32_t seed = 1;                // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };

@@ -216,6 +216,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     environment->bind(p, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
     // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
     p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect ? 1 : 0);
+    p.set("uIndirectClamp", settings.progressive.indirectClamp > 0.0f
+                                ? settings.progressive.indirectClamp
+                                : 3.0e38f);
     (occlusion ? targets->prepass.color : dummy2d).bind(kUnitPrepass);
     targets->accumulation[static_cast<size_t>(targets->current)].color.bind(kUnitAccumulated);
     p.set("uPrepass", kUnitPrepass);

@@ -49,6 +49,9 @@ Status validate(const RenderSettings& s) {
   if (!(p.occlusionDistance > 0.0f) || !std::isfinite(p.occlusionDistance)) {
     return bad("occlusion distance must be positive");
   }
+  if (!(p.indirectClamp >= 0.0f) || !std::isfinite(p.indirectClamp)) {
+    return bad("indirect clamp must be 0 (off) or positive");
+  }
   if (p.lightSamples < 0 || p.lightSamples > 4096) {
     return bad("light samples " + std::to_string(p.lightSamples) + " (must be 0..4096)");
   }

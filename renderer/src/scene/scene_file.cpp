@@ -84,7 +84,7 @@ Status parseProgressive(const json& p, ProgressiveSettings& s, std::vector<std::
   if (!p.is_object()) return makeError("'progressive' must be an object");
   warnUnknown(p,
               {"frames", "fd", "occlusionDistance", "lightSamples", "shadowMapSize",
-               "screenSpaceIndirect", "seed"},
+               "screenSpaceIndirect", "indirectClamp", "seed"},
               "progressive", warnings);
   PN_TRY(read(p, "frames", s.frames, "progressive"));
   PN_TRY(read(p, "fd", s.directDelay, "progressive"));
@@ -92,6 +92,7 @@ Status parseProgressive(const json& p, ProgressiveSettings& s, std::vector<std::
   PN_TRY(read(p, "lightSamples", s.lightSamples, "progressive"));
   PN_TRY(read(p, "shadowMapSize", s.shadowMapSize, "progressive"));
   PN_TRY(read(p, "screenSpaceIndirect", s.screenSpaceIndirect, "progressive"));
+  PN_TRY(read(p, "indirectClamp", s.indirectClamp, "progressive"));
   PN_TRY(read(p, "seed", s.seed, "progressive"));
   return {};
 }
