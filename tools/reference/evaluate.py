@@ -141,7 +141,8 @@ def plot_error_time(path, name, rows, cycles_s):
             ax.plot([r["seconds"] for r in eev], [r[key] for r in eev], "s", color="tab:blue",
                     label="Eevee %d" % EEVEE_SAMPLES)
         if c2:
-            ax.axhline(c2[0][key], color="grey", ls=":", label="Cycles seed 2 (noise floor)")
+            ax.plot([c2[0]["seconds"]], [c2[0][key]], "^", color="tab:green",
+                    label="Cycles %d spp, independent" % c2[0]["frames"])
         ax.axvline(cycles_s, color="grey", ls="--", label="Cycles (reference) time")
         ax.set_xscale("log")
         if key != "ssim":
@@ -187,12 +188,15 @@ def main():
     ap.add_argument("--cache", default="eval-cache")
     ap.add_argument("--size", default=SIZE, help="image size WxH (the cache has one folder per size)")
     ap.add_argument("--report-only", action="store_true",
-                    help="rewrite README.md from the last run's results.json (no rendering)")
+                    help="redraw the curves and rewrite README.md from the last run's results.json (no rendering)")
     a = ap.parse_args()
     os.chdir(a.root)
     if a.report_only:
         with open(os.path.join(a.out, "results.json")) as f:
             saved = json.load(f)
+        for name, r in saved["scenes"].items():  # the curves need only the saved rows
+            plot_error_time(os.path.join(a.out, "%s_error_time.png" % name), name, r["rows"],
+                            r["cycles"]["render_seconds"])
         write_report(a, saved["scenes"], saved["skipped"], saved["frames"], saved.get("when"))
         return
     binary = a.render or next((p for p in ("build/tools/render/penumbra-render",
