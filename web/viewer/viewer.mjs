@@ -58,7 +58,8 @@ function renderProgress(viewer) {
 // ---- settings panel ---------------------------------------------------------------------------
 
 const form = $('panel');
-const numberFields = ['frames', 'fd', 'occlusionDistance', 'exposure', 'budgetMs', 'resolutionScale'];
+const numberFields = ['frames', 'fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
+                      'resolutionScale'];
 
 function fillPanel(settings) {
   for (const el of form.elements) {
