@@ -20,7 +20,10 @@ CameraMatrices cameraMatrices(const Camera& camera, int width, int height, glm::
   const glm::vec2 offset = 2.0f * jitter / glm::vec2(width, std::max(height, 1));
   if (camera.orthographic) {
     const float h = camera.ymag, w = camera.ymag * aspect;
-    m.projection = glm::ortho(-w, w, -h, h, std::max(camera.znear, 0.0f), camera.zfar);
+    // An orthographic frustum needs a finite far plane; a camera built in code may leave it 0.
+    const float znear = std::max(camera.znear, 0.0f);
+    const float zfar = camera.zfar > znear ? camera.zfar : znear + 1.0e4f;
+    m.projection = glm::ortho(-w, w, -h, h, znear, zfar);
     // w = 1: the offset goes into the translation, with the same sign as below.
     m.projection[3][0] -= offset.x;
     m.projection[3][1] -= offset.y;

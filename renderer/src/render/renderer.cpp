@@ -78,6 +78,17 @@ struct Renderer::Impl : progressive::FrameRenderer {
     passStart = now;
   }
 
+  // Exposure, tone mapping and sRGB of the running mean into the bound framebuffer and
+  // viewport (the display target, or the canvas).
+  void drawToneMapped() {
+    const gl::Program& p = tonemap->begin();
+    targets->accumulation[static_cast<size_t>(targets->current)].color.bind(0);
+    p.set("uRadiance", 0);
+    p.set("uExposureScale", std::exp2(settings.exposure));
+    p.set("uToneMapper", static_cast<int>(settings.toneMapper));
+    tonemap->draw();
+  }
+
   // With a black environment nothing is visible before direct light: start it at frame 2.
   void updateDarkness() {
     controller.setDarkEnvironment(environmentMean * settings.environmentIntensity < 1e-6f);
@@ -502,12 +513,7 @@ Status Renderer::toneMap() {
   auto& t = *impl_->targets;
   t.display.framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
-  const gl::Program& p = impl_->tonemap->begin();
-  t.accumulation[static_cast<size_t>(t.current)].color.bind(0);
-  p.set("uRadiance", 0);
-  p.set("uExposureScale", std::exp2(impl_->settings.exposure));
-  p.set("uToneMapper", static_cast<int>(impl_->settings.toneMapper));
-  impl_->tonemap->draw();
+  impl_->drawToneMapped();
   return gl::checkError("tone mapping");
 }
 
@@ -540,15 +546,9 @@ Status Renderer::present(int canvasWidth, int canvasHeight) {
     return makeError("present: canvas size " + std::to_string(canvasWidth) + "x" +
                      std::to_string(canvasHeight) + " is empty");
   }
-  auto& t = *impl_->targets;
   gl::Framebuffer::bindDefault();
   gl::setViewport(0, 0, canvasWidth, canvasHeight);
-  const gl::Program& p = impl_->tonemap->begin();
-  t.accumulation[static_cast<size_t>(t.current)].color.bind(0);
-  p.set("uRadiance", 0);
-  p.set("uExposureScale", std::exp2(impl_->settings.exposure));
-  p.set("uToneMapper", static_cast<int>(impl_->settings.toneMapper));
-  impl_->tonemap->draw();
+  impl_->drawToneMapped();
   return gl::checkError("presenting to the canvas");
 }
 
