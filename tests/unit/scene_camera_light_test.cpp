@@ -12,12 +12,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, eps) << "x";
-  EXPECT_NEAR(a.y, b.y, eps) << "y";
-  EXPECT_NEAR(a.z, b.z, eps) << "z";
-}
-
 const float kS45 = std::sqrt(0.5f);  // sin and cos of 45 degrees, for 90-degree quaternions
 
 TEST(SceneGltfCamera, CamerasFromNodesWithoutScale) {

@@ -17,12 +17,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, eps) << "x";
-  EXPECT_NEAR(a.y, b.y, eps) << "y";
-  EXPECT_NEAR(a.z, b.z, eps) << "z";
-}
-
 void expectMatNear(const glm::mat4& a, const glm::mat4& b, float eps = 1e-5f) {
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r)

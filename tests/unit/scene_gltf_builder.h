@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -187,6 +188,13 @@ inline Result<Scene> loadText(const std::string& text, const std::string& name =
   return loadGltfFromMemory(
       std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()), "",
       name, options);
+}
+
+// Component-wise EXPECT_NEAR for vectors.
+inline void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, eps) << "x";
+  EXPECT_NEAR(a.y, b.y, eps) << "y";
+  EXPECT_NEAR(a.z, b.z, eps) << "z";
 }
 
 inline bool hasWarning(const Scene& scene, const std::string& needle) {
