@@ -143,6 +143,8 @@ void main() {
   color += s.emissive * uEnvWeight;
   // Alpha marks what screen-space indirect light may reuse: emitters are excluded (their light
   // is already counted by the analytic area lights), and extra light batches add nothing.
+  // Alpha-blended BLEND surfaces (frame 1) put their coverage there for the blend instead.
   float reusable = max(s.emissive.r, max(s.emissive.g, s.emissive.b)) > 0.0 ? 0.0 : 1.0;
-  fragColor = vec4(color, uEnvWeight * (uAlphaMode == 2 ? s.baseColor.a : reusable));
+  bool blended = uAlphaMode == 2 && uCoverageFrame < 0;
+  fragColor = vec4(color, uEnvWeight * (blended ? s.baseColor.a : reusable));
 }

@@ -1,5 +1,6 @@
 // glTF metallic-roughness material inputs: factors, the five texture slots (each with its UV
 // set and KHR_texture_transform matrix), vertex colour, alpha modes, normal mapping.
+#include "chunks/coverage.glsl"
 uniform vec4 uBaseColorFactor;
 uniform float uMetallicFactor;
 uniform float uRoughnessFactor;
@@ -46,11 +47,23 @@ vec2 slotUv(int slot) {
   return (uUvTransform[slot] * vec3(uv, 1.0)).xy;
 }
 
+vec4 baseColor() {
+  vec4 c = uBaseColorFactor * vColor;
+  if (hasTexture(SLOT_BASE)) c *= texture(uBaseColorTex, slotUv(SLOT_BASE));
+  return c;
+}
+
+// MASK cuts out below the cutoff; BLEND keeps the fragment with probability alpha (when
+// stochastic coverage is on). The same test runs in every pass that draws the surface.
+void alphaTest(float alpha) {
+  if (uAlphaMode == 1 && alpha < uAlphaCutoff) discard;
+  if (uAlphaMode == 2 && !coverageKept(alpha)) discard;
+}
+
 SurfaceInputs readSurface(vec3 viewDir) {
   SurfaceInputs s;
-  s.baseColor = uBaseColorFactor * vColor;
-  if (hasTexture(SLOT_BASE)) s.baseColor *= texture(uBaseColorTex, slotUv(SLOT_BASE));
-  if (uAlphaMode == 1 && s.baseColor.a < uAlphaCutoff) discard;
+  s.baseColor = baseColor();
+  alphaTest(s.baseColor.a);
   if (uAlphaMode == 0) s.baseColor.a = 1.0;
   s.metallic = uMetallicFactor;
   s.perceptualRoughness = uRoughnessFactor;

@@ -32,7 +32,12 @@ std::string outputDir() {
     return ::testing::AssertionFailure()
            << golden.message() << " (run with PENUMBRA_UPDATE_GOLDEN=1 to create it)";
   }
-  auto diff = compareImages(actual, *golden);
+  return matchesImage(actual, *golden, tolerance, name);
+}
+
+::testing::AssertionResult matchesImage(const Image& actual, const Image& expected,
+                                        Tolerance tolerance, const std::string& name) {
+  auto diff = compareImages(actual, expected);
   const std::string base = outputDir() + "/" + name;
   if (!diff) {
     (void)writeImage(base + ".actual.png", actual);
@@ -42,7 +47,7 @@ std::string outputDir() {
     return ::testing::AssertionSuccess();
   }
   (void)writeImage(base + ".actual.png", actual);
-  (void)writeImage(base + ".expected.png", *golden);
+  (void)writeImage(base + ".expected.png", expected);
   (void)writeImage(base + ".diff.png", diff->heatmap);
   std::ostringstream msg;
   msg << name << ": max diff " << diff->maxAbs << " (allowed " << tolerance.maxAbs

@@ -20,6 +20,11 @@ struct Tolerance {
   double meanAbs;  // largest allowed mean per-channel difference
 };
 
+// Compares `actual` with `expected` over RGB; on failure writes actual, expected and a heat
+// map of the difference into outputDir() and names them in the failure message.
+::testing::AssertionResult matchesImage(const Image& actual, const Image& expected,
+                                        Tolerance tolerance, const std::string& name);
+
 // Compares `actual` with the golden image at `goldenPath` over RGB. On failure it writes
 // actual, expected and a heat map of the difference into outputDir() and names them in the
 // failure message. When PENUMBRA_UPDATE_GOLDEN=1 it writes `actual` as the new golden instead.

@@ -53,6 +53,9 @@ Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
   auto program = library.program("shadow.vert", "shadow.frag");
   if (!program) return program.error();
   pass.program_ = *program;
+  auto alphaProgram = library.program("mesh.vert", "shadow_alpha.frag");
+  if (!alphaProgram) return alphaProgram.error();
+  pass.alphaProgram_ = *alphaProgram;
   pass.size_ = mapSize;
   for (int i = 0; i < kMaxShadowMaps; ++i) {
     auto tex = gl::Texture2D::create({.width = mapSize,
@@ -74,7 +77,8 @@ Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
 }
 
 ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& origin,
-                              const glm::vec3& direction, const glm::vec3& upHint) {
+                              const glm::vec3& direction, const glm::vec3& upHint,
+                              int coverageFrame, int coverageStream) {
   ShadowView sv = fitShadowView(origin, direction, upHint, scene.bounds(), size_);
   const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
                          glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
@@ -82,19 +86,31 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& 
   framebuffers_[static_cast<size_t>(slot)].bind();
   gl::setViewport(0, 0, size_, size_);
   gl::clearDepth(1.0f);
-  program_->use();
-  program_->set("uViewProj", viewProj);
   // Both faces cast: open meshes and single-sided walls must still block light.
-  for (const auto* list : {&scene.opaque(), &scene.blended()}) {
-    for (const DrawItem& item : *list) {
-      gl::apply({.depthTest = gl::DepthTest::Less,
-                 .depthWrite = true,
-                 .cull = gl::Cull::None,
-                 .colorWrite = false,
-                 .polygonOffsetFactor = 1.5f,
-                 .polygonOffsetUnits = 2.0f});
-      program_->set("uModel", item.model);
-      item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+  gl::apply({.depthTest = gl::DepthTest::Less,
+             .depthWrite = true,
+             .cull = gl::Cull::None,
+             .colorWrite = false,
+             .polygonOffsetFactor = 1.5f,
+             .polygonOffsetUnits = 2.0f});
+  // Opaque surfaces first with the position-only program, then those that need their alpha.
+  for (const bool alpha : {false, true}) {
+    gl::Program& program = alpha ? *alphaProgram_ : *program_;
+    bool used = false;
+    for (const auto* list : {&scene.opaque(), &scene.blended()}) {
+      for (const DrawItem& item : *list) {
+        if (scene.needsAlpha(item) != alpha) continue;
+        if (!used) {
+          program.use();
+          program.set("uViewProj", viewProj);
+          program.set("uCoverageFrame", coverageFrame);
+          program.set("uCoverageStream", coverageStream);
+          used = true;
+        }
+        GpuScene::bindTransform(program, item);
+        if (alpha) scene.bindMaterial(program, item.material);
+        item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+      }
     }
   }
   return sv;

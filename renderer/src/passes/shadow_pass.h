@@ -1,7 +1,9 @@
 // ShadowPass: renders one depth-only shadow map per area-light sample, from a point on the
 // light's true surface, with a frustum fitted to the scene bounds inside the light's emitting
 // hemisphere (at most 150 degrees wide; receivers outside it count as lit) and slope-scaled
-// depth bias. Up to kMaxShadowMaps maps are live at once (one lighting batch).
+// depth bias. Up to kMaxShadowMaps maps are live at once (one lighting batch). MASK surfaces
+// cast cut-out shadows and BLEND surfaces block with probability alpha (stochastic coverage,
+// chunks/coverage.glsl: index `coverageFrame`, a `coverageStream` per map of the frame).
 #pragma once
 
 #include <array>
@@ -30,13 +32,15 @@ class ShadowPass {
   static Result<ShadowPass> create(gl::ShaderLibrary& library, int mapSize);
   // Renders map `slot` for a light sample; returns its view for the lighting pass.
   ShadowView render(int slot, const GpuScene& scene, const glm::vec3& origin,
-                    const glm::vec3& direction, const glm::vec3& upHint);
+                    const glm::vec3& direction, const glm::vec3& upHint, int coverageFrame,
+                    int coverageStream);
   // Binds the maps to units firstUnit.. and sets uShadowMap0..3 on a program in use.
   void bind(const gl::Program& program, int firstUnit) const;
   int mapSize() const { return size_; }
 
  private:
-  gl::Program* program_ = nullptr;
+  gl::Program* program_ = nullptr;       // opaque surfaces: positions only
+  gl::Program* alphaProgram_ = nullptr;  // MASK and BLEND surfaces: the material's alpha
   int size_ = 0;
   std::array<gl::Texture2D, kMaxShadowMaps> maps_;
   std::array<gl::Framebuffer, kMaxShadowMaps> framebuffers_;

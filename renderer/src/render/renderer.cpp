@@ -29,6 +29,14 @@ constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated
 constexpr int kMaxAreaPerBatch = passes::kMaxShadowMaps;
 constexpr int kMaxPunctual = 8;
 
+// The stochastic-coverage index of the camera's passes (chunks/coverage.glsl). Frame 1
+// alpha-blends its BLEND surfaces (sorted back to front) so the first image already looks
+// right; frames 2, 3, ... cover stochastically from index 0, so that whole blocks of
+// stratified decisions end with frames 17, 33, ...
+int cameraCoverageFrame(const FramePlan& plan) {
+  return plan.frame > 1 ? plan.frame - 2 : -1;
+}
+
 // GL rows run bottom-up; Image rows top-down. Flips in place and takes the buffer: a
 // 1280x720 float image is 15 MB, and fresh pages cost more than the copy on some machines.
 Image flipRows(std::vector<float> data, int w, int h, int channels) {
@@ -205,7 +213,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
   }
 
-  void renderPrepass(const CameraMatrices& cm) {
+  void renderPrepass(const CameraMatrices& cm, int coverageFrame) {
     targets->prepass.framebuffer.bind();
     gl::setViewport(0, 0, targets->width, targets->height);
     gl::apply({});
@@ -214,7 +222,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
     prepassProgram->use();
     prepassProgram->set("uViewProj", cm.projection * cm.view);
     prepassProgram->set("uView", cm.view);
-    if (scene) drawList(*prepassProgram, scene->opaque(), true, {});
+    prepassProgram->set("uCoverageFrame", coverageFrame);
+    prepassProgram->set("uCoverageStream", 0);
+    if (scene) {
+      drawList(*prepassProgram, scene->opaque(), true, {});
+      drawList(*prepassProgram, scene->blended(), true, {});
+    }
     prepassValid = true;
   }
 
@@ -227,9 +240,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
     environment->bind(p, kUnitEnvCube, kUnitLut, settings.environmentIntensity, envRotation());
     // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
     p.set("uIndirectEnabled", settings.progressive.screenSpaceIndirect ? 1 : 0);
-    p.set("uIndirectClamp", settings.progressive.indirectClamp > 0.0f
-                                ? settings.progressive.indirectClamp
-                                : 3.0e38f);
+    p.set("uIndirectClamp",
+          settings.progressive.indirectClamp > 0.0f ? settings.progressive.indirectClamp : 3.0e38f);
     (occlusion ? targets->prepass.color : dummy2d).bind(kUnitPrepass);
     targets->accumulation[static_cast<size_t>(targets->current)].color.bind(kUnitAccumulated);
     p.set("uPrepass", kUnitPrepass);
@@ -262,8 +274,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const Camera cam = activeCamera();
     const CameraMatrices cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
     if (plan.frame == 1) prepassValid = false;
-    if (plan.occlusion && (plan.renderPrepass || !prepassValid)) {
-      renderPrepass(cameraMatrices(cam, targets->width, targets->height, {0, 0}));
+    // BLEND surfaces cover the pixels differently each frame: the occlusion rays must see
+    // this frame's coverage, so the prepass is redrawn every frame when there are any.
+    const bool coverageChanges = scene && !scene->blended().empty();
+    if (plan.occlusion && (plan.renderPrepass || !prepassValid || coverageChanges)) {
+      renderPrepass(cameraMatrices(cam, targets->width, targets->height, {0, 0}),
+                    cameraCoverageFrame(plan));
       stats.prepass = true;
       endPass(&stats.prepassMs);
     }
@@ -276,6 +292,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (s.light < 0 || s.light >= static_cast<int>(lights.size())) continue;
       (lights[static_cast<size_t>(s.light)].isArea() ? area : punctual).push_back(&s);
     }
+    int shadowStream = 0;  // each shadow map of the frame decides coverage on its own
     const int batches =
         std::max(1, static_cast<int>((area.size() + kMaxAreaPerBatch - 1) / kMaxAreaPerBatch));
     for (int b = 0; b < batches; ++b) {
@@ -292,7 +309,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
         const Light& l = lights[static_cast<size_t>(batch[i]->light)];
         if (batch[i]->shadowed && scene) {
           views.push_back(shadows->render(static_cast<int>(i), *scene,
-                                          samplePosition(l, batch[i]->point), l.direction, l.up));
+                                          samplePosition(l, batch[i]->point), l.direction, l.up,
+                                          plan.frame - 1, ++shadowStream));
           ++stats.shadowPasses;
           endPass(&stats.shadowMs);
         } else {
@@ -355,6 +373,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     setLightingUniforms(cm, viewProj, plan, occlusion);
     const gl::Program& p = *lighting;
     p.set("uEnvWeight", first ? 1.0f : 0.0f);
+    const int coverageFrame = cameraCoverageFrame(plan);
+    p.set("uCoverageFrame", coverageFrame);
+    p.set("uCoverageStream", 0);
     // Area-light samples of this batch.
     std::vector<glm::vec3> pos, dir, right, up, radiance;
     std::vector<glm::vec4> shape;
@@ -417,8 +438,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     targets->frame.framebuffer.bind();
     drawList(p, scene->opaque(), true, opaque);
+    // Stochastic coverage: BLEND surfaces are drawn like opaque ones, minus the fragments
+    // this frame does not keep, in every batch (the same decisions each time).
+    if (coverageFrame >= 0) drawList(p, scene->blended(), true, opaque);
     if (first) drawBackground(viewProj);
-    if (first && !scene->blended().empty()) {
+    if (first && coverageFrame < 0 && !scene->blended().empty()) {
       std::vector<DrawItem> sorted = scene->blended();
       std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& a, const DrawItem& b) {
         // Back to front: by distance from the eye, or along the parallel rays (orthographic).
@@ -428,6 +452,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
         };
         return far(a.center) > far(b.center);
       });
+      p.use();  // the background pass left its own program bound
       drawList(p, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
     }
     return {};

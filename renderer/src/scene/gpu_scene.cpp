@@ -140,6 +140,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       }
       const bool blend =
           gs->materials_[static_cast<size_t>(item.material)].source.alphaMode == AlphaMode::Blend;
+      item.layer = static_cast<int>(gs->opaque_.size() + gs->blended_.size());
       (blend ? gs->blended_ : gs->opaque_).push_back(item);
     }
   }
@@ -217,6 +218,7 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
 void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
   program.set("uModel", item.model);
   program.set("uNormalMatrix", item.normalMatrix);
+  program.set("uLayer", item.layer);
 }
 
 }  // namespace penumbra

@@ -37,6 +37,7 @@ struct DrawItem {
   glm::mat3 normalMatrix{1.0f};
   bool mirrored = false;  // negative determinant: front faces wind clockwise
   glm::vec3 center{0.0f};
+  int layer = 0;  // index in the scene's draw order: the stochastic-coverage key (uLayer)
 };
 
 class GpuScene {
@@ -51,7 +52,12 @@ class GpuScene {
 
   // Sets the material uniforms and binds its textures to units 0..4 on a program in use.
   void bindMaterial(const gl::Program& program, int material) const;
-  // Sets uModel and uNormalMatrix of a draw item.
+  // True when a material cuts out (MASK) or covers partially (BLEND): its depth-only passes
+  // need the material's alpha.
+  bool needsAlpha(const DrawItem& item) const {
+    return material(item.material).source.alphaMode != AlphaMode::Opaque;
+  }
+  // Sets uModel, uNormalMatrix and uLayer of a draw item.
   static void bindTransform(const gl::Program& program, const DrawItem& item);
 
  private:
