@@ -23,6 +23,7 @@ generator_for() {
     kitchen/*) echo "gen_kitchen.py" ;;
     product/*) echo "gen_product.py" ;;
     dense/*) echo "gen_dense.py" ;;
+    glass/*) echo "gen_glass.py" ;;
     *) echo "" ;;
   esac
 }

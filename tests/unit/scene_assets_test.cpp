@@ -59,5 +59,29 @@ TEST(SceneAssets, OtherBundledScenesLoadWithoutErrors) {
   if (loaded == 0) GTEST_SKIP() << "no bundled scenes yet";
 }
 
+TEST(SceneAssets, GlassSceneCarriesEveryAlphaMode) {
+  auto scene = loadGltf(sourceDir() + "/assets/glass/glass.gltf");
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  int blend = 0, mask = 0, doubleSided = 0;
+  for (const Material& m : scene->materials) {
+    blend += m.alphaMode == AlphaMode::Blend;
+    doubleSided += m.doubleSided;
+    if (m.alphaMode == AlphaMode::Mask) {
+      ++mask;
+      ASSERT_TRUE(m.baseColorTexture.valid());
+      const ImageData& img = scene->images.at(static_cast<size_t>(m.baseColorTexture.image));
+      EXPECT_EQ(img.width, 8);
+      EXPECT_FALSE(img.placeholder);
+      int holes = 0;
+      for (size_t i = 3; i < img.pixels.size(); i += 4) holes += img.pixels[i] == 0;
+      EXPECT_EQ(holes, 18);  // every other texel inside a one-texel frame
+    }
+  }
+  EXPECT_EQ(blend, 2);
+  EXPECT_EQ(mask, 1);
+  EXPECT_EQ(doubleSided, 3);
+  EXPECT_EQ(scene->lights.size(), 1u);
+}
+
 }  // namespace
 }  // namespace penumbra::test

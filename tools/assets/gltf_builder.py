@@ -237,6 +237,8 @@ class GltfBuilder:
                                       "accessors", "bufferViews")}
         self.area_lights = []
         self.ext_used = set()
+        self.images = []  # (uri, PNG bytes): files beside a .gltf, buffer views in a .glb
+        self.textures, self.samplers = [], []
 
     def _push(self, key, obj):
         self.lists[key].append(obj)
@@ -280,11 +282,28 @@ class GltfBuilder:
             prim["material"] = material
         return prim
 
-    def material(self, name, base, metallic=0.0, roughness=1.0, emissive=None, strength=1.0):
-        m = {"name": name,
-             "pbrMetallicRoughness": {"baseColorFactor": nums(list(base) + [1.0]),
-                                      "metallicFactor": num(metallic),
-                                      "roughnessFactor": num(roughness)}}
+    def texture(self, png, uri, nearest=False):
+        """A PNG texture; `nearest` samples it without filtering or mipmaps."""
+        self.images.append((uri, png))
+        tex = {"source": len(self.images) - 1}
+        if nearest:
+            self.samplers.append({"magFilter": 9728, "minFilter": 9728})
+            tex["sampler"] = len(self.samplers) - 1
+        self.textures.append(tex)
+        return len(self.textures) - 1
+
+    def material(self, name, base, metallic=0.0, roughness=1.0, emissive=None, strength=1.0,
+                 alpha=1.0, alpha_mode=None, double_sided=False, base_texture=None):
+        pbr = {"baseColorFactor": nums(list(base) + [alpha]),
+               "metallicFactor": num(metallic),
+               "roughnessFactor": num(roughness)}
+        if base_texture is not None:
+            pbr["baseColorTexture"] = {"index": base_texture}
+        m = {"name": name, "pbrMetallicRoughness": pbr}
+        if alpha_mode is not None:
+            m["alphaMode"] = alpha_mode
+        if double_sided:
+            m["doubleSided"] = True
         if emissive is not None:
             m["emissiveFactor"] = nums(emissive)
             if strength != 1.0:
@@ -345,6 +364,22 @@ class GltfBuilder:
                     "bufferViews"):
             if self.lists[key]:
                 doc[key] = self.lists[key]
+        if self.images:
+            if uri:
+                doc["images"] = [{"uri": name} for name, _ in self.images]
+            else:
+                doc["images"] = []
+                for _, png in self.images:
+                    view = len(self.lists["bufferViews"])
+                    self._view(png, None)
+                    del self.lists["bufferViews"][view]["target"]
+                    doc["images"].append({"bufferView": view, "mimeType": "image/png"})
+                doc["bufferViews"] = self.lists["bufferViews"]
+                while len(self.bin) % 4:
+                    self.bin.append(0)
+            doc["textures"] = self.textures
+            if self.samplers:
+                doc["samplers"] = self.samplers
         buf = {"byteLength": len(self.bin)}
         if uri:
             buf["uri"] = uri
@@ -362,6 +397,9 @@ class GltfBuilder:
             f.write(to_json(doc) + "\n")
         with open(os.path.join(os.path.dirname(os.path.abspath(path)), bin_name), "wb") as f:
             f.write(self.bin)
+        for name, png in self.images:
+            with open(os.path.join(os.path.dirname(os.path.abspath(path)), name), "wb") as f:
+                f.write(png)
 
     def write_glb(self, path):
         """Binary container: 12-byte header, JSON chunk padded with spaces,
