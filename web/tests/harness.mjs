@@ -1,8 +1,10 @@
 // Shared pieces of the browser tests and the benchmark: paths, a static file server for
-// web/dist on 127.0.0.1, bounded waits, and Debian's headless Chromium through playwright-core
-// (WebGL2 via ANGLE + SwiftShader; no GPU, display or browser download needed).
+// web/dist on 127.0.0.1, bounded waits, Debian's headless Chromium through playwright-core
+// (WebGL2 via ANGLE + SwiftShader; no GPU, display or browser download needed), canvas
+// read-back, image differences and the native renders they are compared with.
+import { spawnSync } from 'node:child_process';
 import { createServer } from 'node:http';
-import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { extname, join, normalize, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -99,4 +101,88 @@ export function recordConsole(page, lines = []) {
   page.on('console', (m) => lines.push(`[${m.type()}] ${m.text()}`));
   page.on('pageerror', (e) => lines.push(`[pageerror] ${e.message}`));
   return lines;
+}
+
+// RGBA bytes of the canvas (or of an image URL), decoded by the browser.
+export const pixels = (pg, url) => pg.evaluate(async (src) => {
+  let source = document.getElementById('canvas');
+  if (src) {
+    source = new Image();
+    source.src = src;
+    await source.decode();
+  }
+  const c = document.createElement('canvas');
+  c.width = source.width;
+  c.height = source.height;
+  const ctx = c.getContext('2d');
+  ctx.drawImage(source, 0, 0);
+  return { width: c.width, height: c.height, data: [...ctx.getImageData(0, 0, c.width, c.height).data] };
+}, url || null);
+
+// Mean, max and 99th percentile of |a - b| over R, G, B, in [0, 1].
+export function diff(a, b) {
+  if (a.width !== b.width || a.height !== b.height) {
+    throw new Error(`sizes differ: ${a.width}x${a.height} vs ${b.width}x${b.height}`);
+  }
+  const hist = new Array(256).fill(0);
+  let sum = 0, max = 0, n = 0;
+  for (let i = 0; i < a.data.length; i += 4) {
+    for (let c = 0; c < 3; c++) {
+      const d = Math.abs(a.data[i + c] - b.data[i + c]);
+      sum += d;
+      max = Math.max(max, d);
+      hist[Math.min(255, Math.round(d))]++;
+      n++;
+    }
+  }
+  let acc = 0, p99 = 0;
+  while (p99 < 255 && (acc += hist[p99]) < 0.99 * n) p99++;
+  return { mean: sum / n / 255, max: max / 255, p99: p99 / 255 };
+}
+export const fmt = (d) => `mean ${d.mean.toFixed(4)}, p99 ${d.p99.toFixed(3)}, max ${d.max.toFixed(3)}`;
+
+// The image averaged over size x size blocks (RGBA, same layout), for noise-robust comparisons.
+export function blocks(img, size) {
+  const w = Math.floor(img.width / size), h = Math.floor(img.height / size);
+  const data = new Array(w * h * 4).fill(0);
+  for (let y = 0; y < h * size; y++) {
+    for (let x = 0; x < w * size; x++) {
+      const o = ((Math.floor(y / size) * w) + Math.floor(x / size)) * 4;
+      for (let c = 0; c < 4; c++) data[o + c] += img.data[(y * img.width + x) * 4 + c] / (size * size);
+    }
+  }
+  return { width: w, height: h, data };
+}
+
+const NATIVE_BIN = process.env.PENUMBRA_RENDER || join(root, 'build/tools/render/penumbra-render');
+
+function newestSource(dirs) {
+  let newest = 0;
+  for (const dir of dirs) {
+    for (const entry of readdirSync(dir, { recursive: true, withFileTypes: true })) {
+      if (entry.isFile()) newest = Math.max(newest, statSync(join(entry.parentPath ?? entry.path, entry.name)).mtimeMs);
+    }
+  }
+  return newest;
+}
+
+// The native render of a scene file (path relative to the repository) as {path, source}: made
+// now by penumbra-render when it is built and not older than the renderer sources, else
+// `golden` (a committed PNG; null when there is none). Notes go to `log`.
+export function nativeRender(scene, width, height, frames, outName, golden, log) {
+  const out = join(outDir, outName);
+  rmSync(out, { force: true });
+  // A CLI older than the renderer sources would compare different code: use the golden then.
+  const newest = newestSource([join(root, 'renderer'), join(root, 'glsl')]);
+  if (existsSync(NATIVE_BIN) && statSync(NATIVE_BIN).mtimeMs < newest) {
+    log.push(`[native] ${NATIVE_BIN} is older than the renderer sources: using the golden`);
+  } else if (existsSync(NATIVE_BIN)) {
+    const r = spawnSync(NATIVE_BIN, [join(root, scene), '-o', out, '--size', `${width}x${height}`,
+                                     '--frames', String(frames), '-q'],
+                        { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
+                          timeout: 60_000, encoding: 'utf8' });
+    if (r.status === 0 && existsSync(out)) return { path: out, source: `${NATIVE_BIN} (this run)` };
+    log.push(`[native] penumbra-render failed (${r.status}): ${r.stderr || r.error}`);
+  }
+  return golden ? { path: golden, source: `golden ${golden}` } : null;
 }

@@ -10,11 +10,10 @@
 // screenshot to build-web/test-output/viewer-<test>.png and reports the page's console.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { closeServer, dist, launch, outDir, recordConsole, root, serve,
-         withTimeout } from './harness.mjs';
+import { blocks, closeServer, diff, dist, fmt, launch, nativeRender, outDir, pixels,
+         recordConsole, root, serve, withTimeout } from './harness.mjs';
 
 const SIZE = 160;
 const FRAMES = 16;
@@ -50,7 +49,6 @@ const HALF_MAX_TOL = 0.1;
 //     --size 160x160 --frames 16 -q
 // Regenerate it when the renderer's output changes on purpose.
 const GOLDEN = join(root, 'web/tests/golden/cornell_160_f16.png');
-const NATIVE_BIN = process.env.PENUMBRA_RENDER || join(root, 'build/tools/render/penumbra-render');
 
 let server, browser, page;
 const consoleLines = [];
@@ -58,31 +56,8 @@ const shared = {};  // pixels captured by one test for the next
 
 // The native reference: rendered now when the CLI is built, else the committed golden.
 function nativeReference() {
-  const out = join(outDir, 'native-cornell-160.png');
-  rmSync(out, { force: true });
-  // A CLI older than the renderer sources would compare different code: use the golden then.
-  const newest = newestSource([join(root, 'renderer'), join(root, 'glsl')]);
-  if (existsSync(NATIVE_BIN) && statSync(NATIVE_BIN).mtimeMs < newest) {
-    consoleLines.push(`[native] ${NATIVE_BIN} is older than the renderer sources: using the golden`);
-  } else if (existsSync(NATIVE_BIN)) {
-    const r = spawnSync(NATIVE_BIN, [join(root, 'assets/cornell_box/cornell_box.json'), '-o', out,
-                                     '--size', `${SIZE}x${SIZE}`, '--frames', String(FRAMES), '-q'],
-                        { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
-                          timeout: 60_000, encoding: 'utf8' });
-    if (r.status === 0 && existsSync(out)) return { path: out, source: `${NATIVE_BIN} (this run)` };
-    consoleLines.push(`[native] penumbra-render failed (${r.status}): ${r.stderr || r.error}`);
-  }
-  return { path: GOLDEN, source: `golden ${GOLDEN}` };
-}
-
-function newestSource(dirs) {
-  let newest = 0;
-  for (const dir of dirs) {
-    for (const entry of readdirSync(dir, { recursive: true, withFileTypes: true })) {
-      if (entry.isFile()) newest = Math.max(newest, statSync(join(entry.parentPath ?? entry.path, entry.name)).mtimeMs);
-    }
-  }
-  return newest;
+  return nativeRender('assets/cornell_box/cornell_box.json', SIZE, SIZE, FRAMES,
+                      'native-cornell-160.png', GOLDEN, consoleLines);
 }
 
 before(async () => {
@@ -150,56 +125,6 @@ async function waitConverged(pg, count) {
   assert.equal(s.total, FRAMES);
   assert.equal(s.converged, true);
   return s;
-}
-
-// RGBA bytes of the canvas (or of an image URL), decoded by the browser.
-const pixels = (pg, url) => pg.evaluate(async (src) => {
-  let source = document.getElementById('canvas');
-  if (src) {
-    source = new Image();
-    source.src = src;
-    await source.decode();
-  }
-  const c = document.createElement('canvas');
-  c.width = source.width;
-  c.height = source.height;
-  const ctx = c.getContext('2d');
-  ctx.drawImage(source, 0, 0);
-  return { width: c.width, height: c.height, data: [...ctx.getImageData(0, 0, c.width, c.height).data] };
-}, url || null);
-
-// Mean, max and 99th percentile of |a - b| over R, G, B, in [0, 1].
-function diff(a, b) {
-  assert.equal(a.width, b.width, 'widths differ');
-  assert.equal(a.height, b.height, 'heights differ');
-  const hist = new Array(256).fill(0);
-  let sum = 0, max = 0, n = 0;
-  for (let i = 0; i < a.data.length; i += 4) {
-    for (let c = 0; c < 3; c++) {
-      const d = Math.abs(a.data[i + c] - b.data[i + c]);
-      sum += d;
-      max = Math.max(max, d);
-      hist[Math.min(255, Math.round(d))]++;
-      n++;
-    }
-  }
-  let acc = 0, p99 = 0;
-  while (p99 < 255 && (acc += hist[p99]) < 0.99 * n) p99++;
-  return { mean: sum / n / 255, max: max / 255, p99: p99 / 255 };
-}
-const fmt = (d) => `mean ${d.mean.toFixed(4)}, p99 ${d.p99.toFixed(3)}, max ${d.max.toFixed(3)}`;
-
-// The image averaged over size x size blocks (RGBA, same layout), for noise-robust comparisons.
-function blocks(img, size) {
-  const w = Math.floor(img.width / size), h = Math.floor(img.height / size);
-  const data = new Array(w * h * 4).fill(0);
-  for (let y = 0; y < h * size; y++) {
-    for (let x = 0; x < w * size; x++) {
-      const o = ((Math.floor(y / size) * w) + Math.floor(x / size)) * 4;
-      for (let c = 0; c < 4; c++) data[o + c] += img.data[(y * img.width + x) * 4 + c] / (size * size);
-    }
-  }
-  return { width: w, height: h, data };
 }
 
 test('loads the default scene (Cornell box) and reaches m frames', { timeout: TEST_MS }, async () => {
