@@ -21,6 +21,7 @@ SCENES = {
     "kitchen": "assets/kitchen/kitchen.json",
     "product": "assets/product/product.json",
     "dense": "assets/dense/dense.json",
+    "glass": "assets/glass/glass.json",
 }
 SIZE = "1280x720"
 CYCLES_SAMPLES = 128  # the reference (seed 2)
@@ -268,7 +269,20 @@ def main():
         diff = luma(np.abs(display(last, exposure) - display(ref, exposure)))
         plot_strip(os.path.join(a.out, "%s_strip.png" % name), name, panels, diff, exposure)
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M")
-    with open(os.path.join(a.out, "results.json"), "w") as f:
+    # A run over some scenes keeps the saved rows of the others (each row says when it ran).
+    for r in results.values():
+        r["when"] = when
+    saved_path = os.path.join(a.out, "results.json")
+    if os.path.exists(saved_path):
+        with open(saved_path) as f:
+            saved = json.load(f)
+        for name, r in saved["scenes"].items():
+            if name not in results and name in SCENES:
+                r.setdefault("when", saved.get("when"))
+                results[name] = r
+        results = {n: results[n] for n in SCENES if n in results}
+        skipped = [n for n in skipped if n not in results]
+    with open(saved_path, "w") as f:
         json.dump({"scenes": results, "skipped": skipped, "frames": frames, "when": when}, f, indent=1)
     write_report(a, results, skipped, frames, when)
 
@@ -316,6 +330,9 @@ def write_report(a, results, skipped, frames, when):
     for name, r in results.items():
         L.append("## %s (%s, exposure %+.1f EV)" % (name, r["size"], r["exposure"]))
         L.append("")
+        if r.get("when") and r["when"] != when:
+            L.append("Rendered on %s UTC (a later run covered other scenes)." % r["when"])
+            L.append("")
         L.append("| renderer | frames / samples | time (s) | RMSE linear | MAE tone-mapped | SSIM | RMSE to own %d-frame image |" % max(frames))
         L.append("|---|---:|---:|---:|---:|---:|---:|")
         for row in r["rows"]:
