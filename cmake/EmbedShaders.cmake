@@ -17,3 +17,18 @@ function(penumbra_embed_shaders target dir)
     VERBATIM)
   target_sources(${target} PRIVATE ${_out})
 endfunction()
+
+# penumbra_embed_binary(TARGET FILE SYMBOL): compiles the bytes of FILE into TARGET as
+# penumbra::embedded::SYMBOL() (a std::span<const unsigned char>), for small assets the
+# library must carry (read nowhere at run time).
+function(penumbra_embed_binary target file symbol)
+  set(_out ${CMAKE_CURRENT_BINARY_DIR}/embedded_${symbol}.cpp)
+  add_custom_command(
+    OUTPUT ${_out}
+    COMMAND ${CMAKE_COMMAND} -DINPUT=${file} -DOUTPUT=${_out} -DSYMBOL=${symbol}
+            -P ${PROJECT_SOURCE_DIR}/cmake/EmbedBinaryScript.cmake
+    DEPENDS ${file} ${PROJECT_SOURCE_DIR}/cmake/EmbedBinaryScript.cmake
+    COMMENT "Embedding ${file}"
+    VERBATIM)
+  target_sources(${target} PRIVATE ${_out})
+endfunction()

@@ -17,5 +17,5 @@ add_custom_command(
   COMMENT "Generating the glad GLES 3.0 loader"
   VERBATIM)
 add_library(glad STATIC ${_glad_dir}/src/gles2.c)
-target_include_directories(glad SYSTEM PUBLIC ${_glad_dir}/include)
+target_include_directories(glad SYSTEM PUBLIC $<BUILD_INTERFACE:${_glad_dir}/include>)
 set_target_properties(glad PROPERTIES POSITION_INDEPENDENT_CODE ON)

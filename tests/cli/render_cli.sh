@@ -41,7 +41,7 @@ expect_fail "model named by the scene file is missing" "missing.gltf" "$WORK/mis
 expect_fail "truncated glb" "short.glb" "$WORK/short.glb" -o "$WORK/a.png"
 expect_fail "wrong glb magic" "magic.glb" "$WORK/magic.glb" -o "$WORK/a.png"
 expect_fail "bad size" "--size" "$CORNELL" -o "$WORK/a.png" --size 12by4
-expect_fail "absurd size" "resolution" "$CORNELL" -o "$WORK/a.png" --size 100000x10
+expect_fail "absurd size" "invalid setting: width 100000" "$CORNELL" -o "$WORK/a.png" --size 100000x10
 expect_fail "zero frames" "frames" "$CORNELL" -o "$WORK/a.png" --frames 0
 expect_fail "too many frames" "frames" "$CORNELL" -o "$WORK/a.png" --frames 5000
 expect_fail "bad tone mapper" "tone mapper" "$CORNELL" -o "$WORK/a.png" --tonemap filmic
@@ -50,7 +50,7 @@ expect_fail "unknown camera" "camera" "$CORNELL" -o "$WORK/a.png" --camera nosuc
 expect_fail "missing environment" "nope.hdr" "$CORNELL" -o "$WORK/a.png" --env "$WORK/nope.hdr"
 expect_fail "output folder missing" "does not exist" "$CORNELL" -o "$WORK/no/dir/a.png"
 expect_fail "output format" ".png, .exr" "$CORNELL" -o "$WORK/a.jpg"
-expect_fail "bad shadow size" "shadow-map size" "$CORNELL" -o "$WORK/a.png" --shadow-size 1000
+expect_fail "bad shadow size" "shadowMapSize 1000 (must be a power of two" "$CORNELL" -o "$WORK/a.png" --shadow-size 1000
 [ -e "$WORK/a.png" ] && fail "a failed run wrote an output"
 
 # Normal runs.
@@ -71,7 +71,25 @@ cp "$WORK/cb.png" "$WORK/keep.png"
 "$TOOL" "$CORNELL" -o "$WORK/keep.png" --frames 0 2>/dev/null && fail "frames 0 accepted"
 cmp -s "$WORK/cb.png" "$WORK/keep.png" || fail "a failed run changed an existing output"
 
-"$TOOL" --help | grep -q -- "--occlusion-distance" || fail "--help lacks the progressive flags"
+# Every setting of the schema has its flag (penumbra/settings.h), --env its forms.
+help=$("$TOOL" --help)
+for flag in --exposure --tonemap --env-intensity --env-rotation --no-background --background-blur \
+    --frames --fd --occlusion-distance --light-samples --shadow-size --no-ssgi --indirect-clamp \
+    --seed --env --camera --size --memory-budget; do
+  grep -q -- "$flag" <<<"$help" || fail "--help lacks $flag"
+done
+expect_fail "bad environment" "expected none, studio" "$CORNELL" -o "$WORK/a.png" --env 1,2
+for env in none studio 0.2,0.3,0.4; do
+  out=$("$TOOL" "$CORNELL" -o "$WORK/env.png" --size 16x16 --frames 2 --shadow-size 64 --info \
+        --env "$env" 2>&1) || fail "--env $env exited non-zero"
+  label=$env
+  [ "$env" = 0.2,0.3,0.4 ] && label="uniform(0.2, 0.3, 0.4)"
+  grep -qF "environment: $label" <<<"$out" || fail "--env $env: the log does not say 'environment: $label'"
+done
+# A bare model with lights gets a black world, one without gets the studio.
+out=$("$TOOL" "$ROOT/assets/cornell_box/cornell_box.gltf" -o "$WORK/bare.png" --size 16x16 \
+      --frames 2 --shadow-size 64 --info 2>&1) || fail "bare Cornell box exited non-zero"
+grep -qF "environment: none" <<<"$out" || fail "a scene with lights did not default to no environment"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failed"

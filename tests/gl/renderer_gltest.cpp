@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "penumbra/environment.h"
-#include "penumbra/scene_file.h"
+#include "penumbra/render_job.h"
 #include "render_fixture.h"
 #include "test_support.h"
 
@@ -23,20 +23,26 @@ struct Loaded {
   RenderSettings settings;
 };
 
+// A bundled scene file through the application layer, as every program loads it.
+Loaded loadJob(const std::string& sceneFile,
+               std::vector<std::pair<std::string, std::string>> overrides,
+               EnvironmentLoadOptions panorama = {}) {
+  JobRequest req;
+  req.scenePath = sourceDir() + "/assets/" + sceneFile;
+  req.settings = std::move(overrides);
+  req.panorama = panorama;
+  auto job = RenderJob::load(req);
+  EXPECT_TRUE(job.ok()) << (job.ok() ? "" : job.message());
+  if (!job) return {};
+  return {std::move(job->scene), std::move(job->environment), job->camera, job->settings};
+}
+
 Loaded loadCornell(int size, int frames) {
-  auto sf = loadSceneFile(sourceDir() + "/assets/cornell_box/cornell_box.json");
-  EXPECT_TRUE(sf.ok()) << (sf.ok() ? "" : sf.message());
-  auto scene = loadGltf(sf->gltfPath);
-  EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.message());
-  Loaded l;
-  l.scene = std::move(*scene);
-  l.env = uniformEnvironment(sf->uniformEnvironment);
-  l.settings = sf->settings;
-  l.camera = l.scene.cameras.at(0);
-  l.settings.width = l.settings.height = size;
-  l.settings.progressive.frames = frames;
-  l.settings.progressive.shadowMapSize = 256;
-  return l;
+  const std::string side = std::to_string(size);
+  return loadJob("cornell_box/cornell_box.json", {{"width", side},
+                                                  {"height", side},
+                                                  {"frames", std::to_string(frames)},
+                                                  {"shadowMapSize", "256"}});
 }
 
 std::unique_ptr<Renderer> makeRenderer(const Loaded& l, const RendererOptions& o = {}) {
@@ -151,20 +157,9 @@ TEST_F(RendererGLTest, CornellBoxConvergedMatchesGolden) {
 }
 
 TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
-  auto sf = loadSceneFile(sourceDir() + "/assets/material_grid/material_grid.json");
-  ASSERT_TRUE(sf.ok()) << sf.message();
-  auto scene = loadGltf(sf->gltfPath);
-  ASSERT_TRUE(scene.ok()) << scene.message();
-  auto env = loadEnvironment(sf->environmentPath, {.faceSize = 32, .samples = 32});
-  ASSERT_TRUE(env.ok()) << env.message();
-  Loaded l;
-  l.scene = std::move(*scene);
-  l.env = std::move(*env);
-  l.settings = sf->settings;
-  l.camera = l.scene.cameras.at(0);
-  l.settings.width = 128;
-  l.settings.height = 96;
-  l.settings.progressive.frames = 16;
+  Loaded l = loadJob("material_grid/material_grid.json",
+                     {{"width", "128"}, {"height", "96"}, {"frames", "16"}},
+                     {.faceSize = 32, .samples = 32});
   auto r = makeRenderer(l);
   runToEnd(*r);
   auto img = r->readDisplay();

@@ -56,8 +56,8 @@ TEST(RobustnessCorpus, GltfSeedsAndReproducers) {
     o.memoryBudgetBytes = int64_t{256} << 20;
     o.maxTextureSize = 1024;
     const bool glb = bytes.size() >= 4 && std::equal(bytes.begin(), bytes.begin() + 4, "glTF");
-    auto s = loadGltfFromMemory(bytes, "/nonexistent-penumbra-fuzz", glb ? "fuzz.glb" : "fuzz.gltf",
-                                o);
+    auto s =
+        loadGltfFromMemory(bytes, "/nonexistent-penumbra-fuzz", glb ? "fuzz.glb" : "fuzz.gltf", o);
     if (!s) expectOneLine(s.message());
     if (p.filename().string().rfind("crash-", 0) != 0) {
       EXPECT_TRUE(s.ok()) << s.message();
@@ -124,13 +124,12 @@ GltfBuilder triangle(std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {
 // Found by fuzz_scene_json (kept as tests/fuzz/corpus/scene_json/crash-resolution-float-overflow
 // .json): nlohmann's get<int>() of 6.1e127 was an undefined float-to-int conversion (UBSan).
 TEST(RobustnessSceneJson, IntegerSettingsOutOfRangeAreErrors) {
-  for (const char* text :
-       {R"({"gltf": "a.glb", "resolution": [6.1e127, 720]})",
-        R"({"gltf": "a.glb", "resolution": [640, -1e300]})",
-        R"({"gltf": "a.glb", "progressive": {"frames": 1e20}})",
-        R"({"gltf": "a.glb", "progressive": {"shadowMapSize": 3000000000}})",
-        R"({"gltf": "a.glb", "progressive": {"seed": -1}})",
-        R"({"gltf": "a.glb", "progressive": {"lightSamples": -9e18}})"}) {
+  for (const char* text : {R"({"gltf": "a.glb", "resolution": [6.1e127, 720]})",
+                           R"({"gltf": "a.glb", "resolution": [640, -1e300]})",
+                           R"({"gltf": "a.glb", "progressive": {"frames": 1e20}})",
+                           R"({"gltf": "a.glb", "progressive": {"shadowMapSize": 3000000000}})",
+                           R"({"gltf": "a.glb", "progressive": {"seed": -1}})",
+                           R"({"gltf": "a.glb", "progressive": {"lightSamples": -9e18}})"}) {
     SCOPED_TRACE(text);
     auto f = parseSceneJson(text, "/tmp", "s.json");
     ASSERT_FALSE(f.ok());
@@ -138,7 +137,8 @@ TEST(RobustnessSceneJson, IntegerSettingsOutOfRangeAreErrors) {
     expectOneLine(f.message());
   }
   auto ok = parseSceneJson(R"({"gltf": "a.glb", "resolution": [64.0, 32], "progressive":
-                              {"frames": 16, "seed": 4294967295}})", "/tmp", "s.json");
+                              {"frames": 16, "seed": 4294967295}})",
+                           "/tmp", "s.json");
   ASSERT_TRUE(ok.ok()) << ok.message();
   EXPECT_EQ(ok->settings.width, 64);
   EXPECT_EQ(ok->settings.progressive.seed, 4294967295u);
@@ -146,8 +146,8 @@ TEST(RobustnessSceneJson, IntegerSettingsOutOfRangeAreErrors) {
 
 TEST(RobustnessLoader, MemoryBudgetRefusesDeclaredGigabytes) {
   json d = triangle().finalDoc(false);
-  d["buffers"].push_back({{"byteLength", 6000000000.0},
-                          {"uri", "data:application/octet-stream;base64,AAAA"}});
+  d["buffers"].push_back(
+      {{"byteLength", 6000000000.0}, {"uri", "data:application/octet-stream;base64,AAAA"}});
   d["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 5999999999.0}});
   auto s = loadText(d.dump(), "big.gltf");
   ASSERT_FALSE(s.ok());

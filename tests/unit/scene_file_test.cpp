@@ -22,7 +22,8 @@ TEST(SceneFileTest, ReadsEveryField) {
                            "/scenes", "test.json");
   ASSERT_TRUE(sf.ok()) << sf.message();
   EXPECT_EQ(sf->gltfPath, "/scenes/model.glb");
-  EXPECT_EQ(sf->environmentPath, "/scenes/env/sky.hdr");
+  EXPECT_EQ(sf->environment.kind, EnvironmentSpec::Kind::File);
+  EXPECT_EQ(sf->environment.path, "/scenes/env/sky.hdr");
   EXPECT_EQ(sf->camera, "front");
   const RenderSettings& s = sf->settings;
   EXPECT_EQ(s.width, 640);
@@ -50,8 +51,8 @@ TEST(SceneFileTest, DefaultsAndUniformEnvironment) {
       "t.json");
   ASSERT_TRUE(sf.ok()) << sf.message();
   EXPECT_EQ(sf->settings, RenderSettings{});
-  EXPECT_TRUE(sf->environmentPath.empty());
-  EXPECT_FLOAT_EQ(sf->uniformEnvironment.z, 0.3f);
+  EXPECT_EQ(sf->environment.kind, EnvironmentSpec::Kind::Uniform);
+  EXPECT_FLOAT_EQ(sf->environment.radiance.z, 0.3f);
   EXPECT_EQ(sf->camera, "2");
 }
 
@@ -78,8 +79,16 @@ TEST(SceneFileTest, BadInputIsAOneLineError) {
       {R"({"gltf": "a", "progressive": {"frames": 0}})", "frames"},
       {R"({"gltf": "a", "progressive": {"frames": 5000}})", "frames"},
       {R"({"gltf": "a", "progressive": {"fd": 1.5}})", "fd"},
-      {R"({"gltf": "a", "progressive": {"shadowMapSize": 1000}})", "shadow-map size"},
-      {R"({"gltf": "a", "progressive": {"indirectClamp": -1}})", "indirect clamp"},
+      {R"({"gltf": "a", "progressive": {"shadowMapSize": 1000}})", "shadowMapSize"},
+      {R"({"gltf": "a", "progressive": {"indirectClamp": -1}})", "indirectClamp"},
+      {R"({"gltf": "a", "progressive": {"seed": -1}})", "seed"},
+      {R"({"gltf": "a", "progressive": {"frames": 6e127}})", "frames"},
+      {R"({"gltf": "a", "progressive": {"frames": 2.5}})", "frames"},
+      {R"({"gltf": "a", "exposure": "bright"})", "exposure"},
+      {R"({"gltf": "a", "environment": {"rotation": 1000}})", "environmentRotation"},
+      {R"({"gltf": "a", "environment": {"preset": "sunset"}})", "preset"},
+      {R"({"gltf": "a", "environment": {"file": "x.hdr", "preset": "studio"}})", "one of"},
+      {R"({"gltf": "a", "environment": "1,2"})", "environment"},
       {R"({"gltf": "a", "environment": 5})", "environment"},
       {R"({"gltf": "a", "environment": {"uniform": [1, 2]}})", "uniform"},
   };
@@ -102,6 +111,72 @@ TEST(SceneFileTest, MissingFileAndModelPaths) {
   auto bundled = loadSceneFile(test::sourceDir() + "/assets/cornell_box/cornell_box.json");
   ASSERT_TRUE(bundled.ok()) << bundled.message();
   EXPECT_EQ(bundled->camera, "cornell");
+}
+
+TEST(SceneFileTest, EnvironmentSpecs) {
+  using Kind = EnvironmentSpec::Kind;
+  struct Case {
+    const char* text;
+    Kind kind;
+  } cases[] = {{"none", Kind::None},           {"black", Kind::None},
+               {"studio", Kind::Studio},       {"default", Kind::Default},
+               {"0.1,0.2,0.3", Kind::Uniform}, {"env/sky.hdr", Kind::File}};
+  for (const auto& c : cases) {
+    auto spec = parseEnvironmentSpec(c.text, "/base");
+    ASSERT_TRUE(spec.ok()) << c.text << ": " << spec.message();
+    EXPECT_EQ(spec->kind, c.kind) << c.text;
+    auto again = parseEnvironmentSpec(environmentSpecText(*spec));
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(again->kind, c.kind) << "round trip of " << c.text;
+  }
+  EXPECT_EQ(parseEnvironmentSpec("env/sky.hdr", "/base")->path, "/base/env/sky.hdr");
+  EXPECT_FLOAT_EQ(parseEnvironmentSpec("0.1,0.2,0.3")->radiance.y, 0.2f);
+  for (const char* bad : {"", "1,2", "1,2,-3", "1,2,x", "1,2,3,4", "nan,1,1"}) {
+    auto spec = parseEnvironmentSpec(bad);
+    EXPECT_FALSE(spec.ok()) << "'" << bad << "' was accepted";
+  }
+  auto preset = parseSceneJson(
+      R"({"gltf": "a", "environment": {"preset": "studio", "intensity": 2}})", "", "t.json");
+  ASSERT_TRUE(preset.ok()) << preset.message();
+  EXPECT_EQ(preset->environment.kind, Kind::Studio);
+  EXPECT_FLOAT_EQ(preset->settings.environmentIntensity, 2.0f);
+  auto none = parseSceneJson(R"({"gltf": "a", "environment": "none"})", "", "t.json");
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none->environment.kind, Kind::None);
+  auto unset = parseSceneJson(R"({"gltf": "a"})", "", "t.json");
+  EXPECT_EQ(unset->environment.kind, Kind::Default);
+}
+
+TEST(SceneFileTest, WrittenSceneFilesReadBackTheSame) {
+  SceneFile sf;
+  sf.gltfPath = "models/chair.glb";
+  sf.camera = "front";
+  sf.settings.width = 800;
+  sf.settings.height = 600;
+  sf.settings.exposure = -1.25f;
+  sf.settings.toneMapper = ToneMapper::Reinhard;
+  sf.settings.environmentRotation = 45.0f;
+  sf.settings.showBackground = false;
+  sf.settings.progressive.frames = 64;
+  sf.settings.progressive.indirectClamp = 3.5f;
+  sf.settings.progressive.seed = 4000000000u;
+  for (EnvironmentSpec env :
+       {EnvironmentSpec{}, EnvironmentSpec{.kind = EnvironmentSpec::Kind::Studio},
+        EnvironmentSpec{.kind = EnvironmentSpec::Kind::None},
+        EnvironmentSpec{.kind = EnvironmentSpec::Kind::File, .path = "env/sky.hdr"},
+        EnvironmentSpec{.kind = EnvironmentSpec::Kind::Uniform, .radiance = {0.5f, 0.25f, 2.0f}}}) {
+    sf.environment = env;
+    const std::string text = sceneFileJson(sf);
+    auto back = parseSceneJson(text, "", "written.json");
+    ASSERT_TRUE(back.ok()) << back.message() << "\n" << text;
+    EXPECT_TRUE(back->warnings.empty()) << text;
+    EXPECT_EQ(back->settings, sf.settings) << text;
+    EXPECT_EQ(back->gltfPath, sf.gltfPath);
+    EXPECT_EQ(back->camera, sf.camera);
+    EXPECT_EQ(back->environment.kind, env.kind) << text;
+    EXPECT_EQ(back->environment.path, env.path);
+    EXPECT_EQ(back->environment.radiance, env.radiance);
+  }
 }
 
 TEST(SettingsTest, ToneMapperNamesRoundTrip) {

@@ -4,6 +4,8 @@
 Writes (or into --out-dir):
   assets/env/studio_sky.hdr     512 x 256 sky: gradient, ground, sun, 2 softboxes
   assets/env/uniform_white.hdr  64 x 32, radiance 1.0 everywhere (white furnace)
+  assets/env/studio.hdr         128 x 64 neutral studio, the default environment of
+                                scenes without lights (embedded in the library)
 
 Panorama convention (the one the Penumbra prefilter tool uses, docs/ibl.md; Blender's
 world-texture convention seen through its glTF importer), for pixel centre (u, v) in
@@ -114,6 +116,34 @@ def studio_sky(w, h):
     return rows
 
 
+def neutral_studio(w, h):
+    """Grey and colourless: a soft overhead light, two large softboxes left and right of the
+    camera's +Z side, a mid-grey wall and a darker floor; no sun, so no hard shadows.
+    Mean radiance about 0.5, so a white Lambert surface facing up reads about 0.9."""
+    boxes = (
+        {"u": 0.625, "elev": 25.0, "width": 50.0, "height": 40.0, "radiance": (3.0, 3.0, 3.0)},
+        {"u": 0.875, "elev": 25.0, "width": 50.0, "height": 40.0, "radiance": (2.0, 2.0, 2.0)},
+    )
+    rows = []
+    for j in range(h):
+        v = (j + 0.5) / h
+        elev = 90.0 - 180.0 * v
+        top = smoothstep(30.0, 90.0, elev)                  # overhead soft light
+        wall = 0.35 + 0.45 * top
+        k = smoothstep(-HORIZON_BLEND_DEG, HORIZON_BLEND_DEG, elev)
+        base = 0.12 + (wall - 0.12) * k
+        row = []
+        for i in range(w):
+            u = (i + 0.5) / w
+            c = base
+            for box in boxes:
+                f = softbox_weight(box, u, elev)
+                c = c + (box["radiance"][0] - c) * f
+            row.append((c, c, c))
+        rows.append(row)
+    return rows
+
+
 def rgbe(c):
     m = max(c)
     if m < 1e-32:
@@ -145,6 +175,8 @@ def main(argv):
               "Penumbra tools/assets/gen_environment.py: procedural studio sky")
     write_hdr(os.path.join(out_dir, "uniform_white.hdr"), [[(1.0, 1.0, 1.0)] * 64] * 32,
               "Penumbra tools/assets/gen_environment.py: uniform radiance 1.0")
+    write_hdr(os.path.join(out_dir, "studio.hdr"), neutral_studio(128, 64),
+              "Penumbra tools/assets/gen_environment.py: neutral studio")
 
 
 if __name__ == "__main__":

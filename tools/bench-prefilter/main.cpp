@@ -15,7 +15,6 @@
 
 #include <glm/glm.hpp>
 
-#include "ibl/parallel.h"
 #include "penumbra/ibl.h"
 
 namespace {

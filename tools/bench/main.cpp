@@ -12,10 +12,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "penumbra/environment.h"
 #include "penumbra/gl_context.h"
+#include "penumbra/render_job.h"
 #include "penumbra/renderer.h"
-#include "penumbra/scene_file.h"
 
 using namespace penumbra;
 using Clock = std::chrono::steady_clock;
@@ -45,31 +44,17 @@ struct Row {
 };
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown) {
-  auto sf = loadSceneFile(sceneFile);
-  if (!sf) return sf.error();
-  auto scene = loadGltf(sf->gltfPath);
-  if (!scene) return scene.error();
-  PackedEnvironment env = uniformEnvironment(sf->uniformEnvironment);
-  if (!sf->environmentPath.empty()) {
-    auto e = loadEnvironment(sf->environmentPath);
-    if (!e) return e.error();
-    env = std::move(*e);
-  }
+  JobRequest request;
+  request.scenePath = sceneFile;
+  request.settings = {{"width", std::to_string(w)},
+                      {"height", std::to_string(h)},
+                      {"frames", std::to_string(frames)}};
+  auto job = RenderJob::load(request);
+  if (!job) return job.error();
+  const Scene* scene = &job->scene;
   auto r = Renderer::create({.profilePasses = breakdown});
   if (!r) return r.error();
-  RenderSettings s = sf->settings;
-  s.width = w;
-  s.height = h;
-  s.progressive.frames = frames;
-  PN_TRY((*r)->setSettings(s));
-  PN_TRY((*r)->setScene(*scene));
-  PN_TRY((*r)->setEnvironment(env));
-  if (!scene->cameras.empty()) {
-    auto idx = findCamera(*scene, sf->camera.empty() ? "0" : sf->camera);
-    (*r)->setCamera(scene->cameras[idx ? static_cast<size_t>(*idx) : 0]);
-  } else {
-    (*r)->setCamera(defaultCamera(*scene));
-  }
+  PN_TRY(job->applyTo(**r));
   // Warm-up: one full run compiles every program and touches every target.
   while (!(*r)->converged()) PN_TRY((*r)->step());
   (void)(*r)->readDisplay();

@@ -17,6 +17,7 @@
 #include "penumbra/ibl.h"
 #include "penumbra/image.h"
 #include "penumbra/prefilter_gpu.h"
+#include "penumbra/version.h"
 
 namespace {
 
@@ -137,8 +138,9 @@ int main(int argc, char** argv) {
   auto* cpuFlag = app.add_flag("--cpu", useCpu,
                                "prefilter on the CPU (the reference; by default the GPU is used "
                                "only where it is faster, i.e. on a hardware GPU)");
-  app.add_flag("--gpu", useGpu, "prefilter on the GPU through OpenGL ES 3.0 (falls back to the CPU "
-                                "with a warning when no context can be made)")
+  app.add_flag("--gpu", useGpu,
+               "prefilter on the GPU through OpenGL ES 3.0 (falls back to the CPU "
+               "with a warning when no context can be made)")
       ->excludes(cpuFlag);
   app.add_option("--threads", threads, "worker threads, 0 = all cores")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
@@ -205,11 +207,13 @@ int main(int argc, char** argv) {
     if (ctx) {
       if (useGpu || penumbra::gpuPrefilterIsFaster()) context = std::move(*ctx);
     } else if (useGpu) {
-      std::fprintf(stderr, "penumbra-prefilter: warning: no GL context for --gpu (%s); using the CPU\n",
+      std::fprintf(stderr,
+                   "penumbra-prefilter: warning: no GL context for --gpu (%s); using the CPU\n",
                    ctx.message().c_str());
     }
   }
-  auto env = context ? penumbra::prefilterGpu(*panorama, options) : ibl::prefilterCpu(*panorama, options);
+  auto env =
+      context ? penumbra::prefilterGpu(*panorama, options) : ibl::prefilterCpu(*panorama, options);
   if (!quiet) {
     std::fprintf(stderr, "penumbra-prefilter: %s path\n", context ? "GPU" : "CPU");
   }
@@ -217,7 +221,7 @@ int main(int argc, char** argv) {
     fail(env.message());
     return 1;
   }
-  env->generator = std::string("penumbra-prefilter ") + PENUMBRA_VERSION;
+  env->generator = std::string("penumbra-prefilter ") + penumbra::version();
   const auto prefiltered = std::chrono::steady_clock::now();
   const auto seconds = [](auto from, auto to) {
     return std::chrono::duration<double>(to - from).count();

@@ -11,12 +11,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "penumbra/environment.h"
+#include "../common/setting_flags.h"
 #include "penumbra/gl_context.h"
 #include "penumbra/image.h"
+#include "penumbra/render_job.h"
 #include "penumbra/renderer.h"
-#include "penumbra/scene.h"
-#include "penumbra/scene_file.h"
 #include "penumbra/version.h"
 #include "progress.h"
 
@@ -76,40 +75,24 @@ int main(int argc, char** argv) {
       "HDR environment and area lights. OUT.png is the displayed image (exposure, tone\n"
       "mapping, sRGB); OUT.exr is the linear radiance before exposure."};
   app.set_version_flag("--version", std::string("penumbra-render ") + version());
-  std::string scenePath, outPath, size, cameraName, envPath, toneMapper, glName = "auto",
-                                                                         contactPath;
-  float exposure = 0, fd = 0, occDistance = 0, envIntensity = -1, envRotation = 0;
-  int frames = 0, lightSamples = -1, shadowSize = 0, saveEvery = 0;
+  std::string outPath, size, envText, glName = "auto", contactPath;
+  int saveEvery = 0;
   int64_t memoryBudgetMb = 2048;
-  uint32_t seed = 0;
-  bool noSsgi = false, quiet = false, noBackground = false, info = false, halfFloat = false;
-  app.add_option("scene", scenePath, "scene file (.json) or model (.gltf/.glb)")->required();
+  bool quiet = false, info = false, halfFloat = false;
+  JobRequest request;
+  app.add_option("scene", request.scenePath, "scene file (.json) or model (.gltf/.glb)")
+      ->required();
   app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)")->required();
   app.add_option("--size", size, "resolution WxH (default from the scene file, else 1280x720)");
-  app.add_option("--camera", cameraName, "camera name or index");
-  app.add_option("--env", envPath,
-                 "environment: packed .hdr from penumbra-prefilter or a panorama");
-  auto* expOpt = app.add_option("--exposure", exposure, "exposure in EV");
-  app.add_option("--tonemap", toneMapper, "pbr-neutral (default), aces, reinhard or none");
-  auto* intensityOpt =
-      app.add_option("--env-intensity", envIntensity, "environment intensity multiplier");
-  auto* rotOpt =
-      app.add_option("--env-rotation", envRotation, "environment rotation about +Y, degrees");
-  app.add_flag("--no-background", noBackground, "black background instead of the environment");
+  app.add_option("--camera", request.camera, "camera name or index");
+  app.add_option("--env", envText,
+                 "environment: none (black), studio (the neutral studio shipped with "
+                 "Penumbra), r,g,b (uniform radiance) or a file (packed .hdr from "
+                 "penumbra-prefilter, or a panorama). Default: the scene file's, else black "
+                 "for a scene with lights and studio for one without");
+  tools::SettingFlags settingFlags;
+  settingFlags.add(app);
   app.add_option("--gl", glName, "GL backend: auto, egl, egl-device or osmesa");
-  auto* framesOpt =
-      app.add_option("--frames", frames, "intermediate frames m (1..4096, default 128)");
-  auto* fdOpt = app.add_option("--fd", fd, "fraction of frames before direct light starts (0.3)");
-  auto* occOpt =
-      app.add_option("--occlusion-distance", occDistance, "occlusion distance d_occ (m)");
-  auto* samplesOpt = app.add_option("--light-samples", lightSamples,
-                                    "shadow-map samples per area light (0 = auto)");
-  auto* shadowOpt = app.add_option("--shadow-size", shadowSize, "shadow-map size (power of two)");
-  app.add_flag("--no-ssgi", noSsgi, "turn off one-bounce screen-space indirect light");
-  float indirectClamp = 0;
-  auto* clampOpt = app.add_option("--indirect-clamp", indirectClamp,
-                                  "largest radiance of one indirect sample (0 = no limit)");
-  auto* seedOpt = app.add_option("--seed", seed, "seed of the sample sequences");
   app.add_option("--save-every", saveEvery, "also write OUT_fNNNN.png every K frames");
   app.add_option("--contact-sheet", contactPath, "write frames 1, 2, 4, ... m side by side");
   app.add_flag("--half-float", halfFloat, "accumulate in RGBA16F (the weak-device path)");
@@ -120,61 +103,26 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   CLI11_PARSE(app, argc, argv);
 
-  auto sceneFile = loadSceneFile(scenePath);
-  if (!sceneFile) return fail(sceneFile.message());
-  SceneFile sf = std::move(*sceneFile);
-  RenderSettings& s = sf.settings;
+  request.settings = settingFlags.overrides();
   if (!size.empty()) {
     int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X')) {
+    char x = 0, tail = 0;
+    if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || (x != 'x' && x != 'X')) {
       return fail("--size must be WxH, e.g. 1280x720 (got '" + size + "')");
     }
-    s.width = w;
-    s.height = h;
+    request.settings.emplace_back("width", std::to_string(w));
+    request.settings.emplace_back("height", std::to_string(h));
   }
-  if (*expOpt) s.exposure = exposure;
-  if (!toneMapper.empty()) {
-    auto t = parseToneMapper(toneMapper);
-    if (!t) return fail(t.message());
-    s.toneMapper = *t;
+  if (!envText.empty()) {
+    auto spec = parseEnvironmentSpec(envText);
+    if (!spec) return fail(spec.message());
+    request.environment = *spec;
   }
-  if (*intensityOpt) s.environmentIntensity = envIntensity;
-  if (*rotOpt) s.environmentRotation = envRotation;
-  if (noBackground) s.showBackground = false;
-  if (*framesOpt) s.progressive.frames = frames;
-  if (*fdOpt) s.progressive.directDelay = fd;
-  if (*occOpt) s.progressive.occlusionDistance = occDistance;
-  if (*samplesOpt) s.progressive.lightSamples = lightSamples;
-  if (*shadowOpt) s.progressive.shadowMapSize = shadowSize;
-  if (noSsgi) s.progressive.screenSpaceIndirect = false;
-  if (*clampOpt) s.progressive.indirectClamp = indirectClamp;
-  if (*seedOpt) s.progressive.seed = seed;
-  if (!envPath.empty()) sf.environmentPath = envPath;
-  if (!cameraName.empty()) sf.camera = cameraName;
-  if (auto st = validate(s); !st) return fail(st.message());
   if (memoryBudgetMb < 1 || memoryBudgetMb > (int64_t{1} << 30)) {
     return fail("--memory-budget must be a positive number of MB, got " +
                 std::to_string(memoryBudgetMb));
   }
-  const int64_t budgetBytes = memoryBudgetMb << 20;
-  {
-    // Render targets: about 5 RGBA32F colour targets and 2 32-bit depth buffers per pixel,
-    // plus up to 4 shadow maps of 32-bit depth. Checked before any GL allocation.
-    const int64_t pixels = int64_t{s.width} * s.height;
-    const int64_t shadow = int64_t{s.progressive.shadowMapSize} * s.progressive.shadowMapSize;
-    const int64_t need = pixels * (5 * 16 + 2 * 4) + 4 * shadow * 4;
-    if (need > budgetBytes) {
-      return fail("render targets for " + std::to_string(s.width) + "x" +
-                  std::to_string(s.height) + " need about " + std::to_string(need >> 20) +
-                  " MB of GPU memory, over the memory budget of " +
-                  std::to_string(memoryBudgetMb) + " MB (--memory-budget)");
-    }
-  }
-  if (!quiet) {
-    for (const auto& w : sf.warnings)
-      std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
-  }
+  request.memoryBudgetBytes = memoryBudgetMb << 20;
   // Refuse an output we cannot write before spending time on the render.
   const fs::path outDir = fs::path(outPath).parent_path();
   if (!outDir.empty() && !fs::is_directory(outDir)) {
@@ -190,22 +138,13 @@ int main(int argc, char** argv) {
   auto context = GlContext::create({.backend = *backend});
   if (!context) return fail(context.message());
 
-  LoadOptions loadOptions;
-  loadOptions.memoryBudgetBytes = budgetBytes;
-  auto scene = loadGltf(sf.gltfPath, loadOptions);
-  if (!scene) return fail(scene.message());
+  auto job = RenderJob::load(request);
+  if (!job) return fail(job.message());
   if (!quiet) {
-    for (const auto& w : scene->warnings)
+    for (const auto& w : job->warnings)
       std::fprintf(stderr, "penumbra-render: warning: %s\n", w.c_str());
   }
-  PackedEnvironment env;
-  if (!sf.environmentPath.empty()) {
-    auto e = loadEnvironment(sf.environmentPath);
-    if (!e) return fail(e.message());
-    env = std::move(*e);
-  } else {
-    env = uniformEnvironment(sf.uniformEnvironment);
-  }
+  const RenderSettings& s = job->settings;
 
   auto renderer =
       Renderer::create({.desktopGl = (*context)->isDesktopGl(), .forceHalfFloat = halfFloat});
@@ -213,19 +152,9 @@ int main(int argc, char** argv) {
   Renderer& r = **renderer;
   if (info) {
     std::fprintf(stderr, "%s\n%s", (*context)->description().c_str(), r.capabilityReport().c_str());
+    std::fprintf(stderr, "environment: %s\n", job->environmentName.c_str());
   }
-  if (auto st = r.setSettings(s); !st) return fail(st.message());
-  if (auto st = r.setScene(*scene); !st) return fail(st.message());
-  if (auto st = r.setEnvironment(env); !st) return fail(st.message());
-  if (!sf.camera.empty()) {
-    auto idx = findCamera(*scene, sf.camera);
-    if (!idx) return fail(idx.message());
-    r.setCamera(scene->cameras[static_cast<size_t>(*idx)]);
-  } else if (!scene->cameras.empty()) {
-    r.setCamera(scene->cameras[0]);
-  } else {
-    r.setCamera(defaultCamera(*scene));
-  }
+  if (auto st = job->applyTo(r); !st) return fail(st.message());
 
   tools::ProgressBar bar("rendering", s.progressive.frames, !quiet && isatty(STDERR_FILENO));
   std::vector<Image> sheet;

@@ -21,6 +21,7 @@
 //     radiance of the image.
 #pragma once
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,22 +29,18 @@
 #include <functional>
 #include <limits>
 #include <string>
-#include <unistd.h>
 
-#include "penumbra/environment.h"
-#include "penumbra/renderer.h"
-#include "penumbra/scene.h"
-#include "penumbra/scene_file.h"
+#include "penumbra/render_job.h"
 
 namespace penumbra::soak {
 
 struct Options {
   std::string cornellGltf;  // assets/cornell_box/cornell_box.gltf
   int width = 64, height = 64;
-  int runFrames = 4096;      // frames of one accumulation (1..4096)
-  int totalFrames = 10000;   // frames drawn in all, over restarted runs
-  int sampleEvery = 500;     // RSS and finiteness sample interval
-  int warmupFrames = 500;    // the baseline is the first sample at or after this frame
+  int runFrames = 4096;     // frames of one accumulation (1..4096)
+  int totalFrames = 10000;  // frames drawn in all, over restarted runs
+  int sampleEvery = 500;    // RSS and finiteness sample interval
+  int warmupFrames = 500;   // the baseline is the first sample at or after this frame
   double maxGrowthMb = 4.0;
   int injectFrames = 256;
   int shadowMapSize = 256;
@@ -87,21 +84,23 @@ inline Report run(const Options& o, const std::function<void(const std::string&)
     rep.failure = m;
     return rep;
   };
-  auto scene = loadGltf(o.cornellGltf);
-  if (!scene) return fail(scene.message());
-  auto cam = findCamera(*scene, "cornell");
-  const Camera camera = cam ? scene->cameras[static_cast<size_t>(*cam)] : defaultCamera(*scene);
+  JobRequest request;
+  request.scenePath = o.cornellGltf;
+  request.camera = "cornell";
+  request.environment =
+      EnvironmentSpec{.kind = EnvironmentSpec::Kind::Uniform, .radiance = glm::vec3(0.05f)};
+  request.settings = {{"width", std::to_string(o.width)},
+                      {"height", std::to_string(o.height)},
+                      {"shadowMapSize", std::to_string(o.shadowMapSize)},
+                      {"occlusionDistance", "0.3"}};
+  auto job = RenderJob::load(request);
+  if (!job) return fail(job.message());
+  const Scene* scene = &job->scene;
   auto created = Renderer::create({.desktopGl = o.desktopGl});
   if (!created) return fail(created.message());
   Renderer& r = **created;
-  RenderSettings s;
-  s.width = o.width;
-  s.height = o.height;
-  s.progressive.shadowMapSize = o.shadowMapSize;
-  s.progressive.occlusionDistance = 0.3f;
-  if (auto st = r.setEnvironment(uniformEnvironment(glm::vec3(0.05f))); !st)
-    return fail(st.message());
-  r.setCamera(camera);
+  RenderSettings s = job->settings;
+  if (auto st = job->applyTo(r); !st) return fail(st.message());
   auto accumulate = [&](int frames) -> Status {
     while (frames-- > 0 && !r.converged()) {
       auto f = r.step();
@@ -179,9 +178,10 @@ inline Report run(const Options& o, const std::function<void(const std::string&)
         rep.peakMb = std::max(rep.peakMb, mb);
         if (mb - rep.baselineMb > o.maxGrowthMb) {
           char m[160];
-          std::snprintf(m, sizeof m, "frame %d: resident memory %.1f MB grew %.1f MB over the "
-                        "baseline %.1f MB (limit %.1f MB)", drawn, mb, mb - rep.baselineMb,
-                        rep.baselineMb, o.maxGrowthMb);
+          std::snprintf(m, sizeof m,
+                        "frame %d: resident memory %.1f MB grew %.1f MB over the "
+                        "baseline %.1f MB (limit %.1f MB)",
+                        drawn, mb, mb - rep.baselineMb, rep.baselineMb, o.maxGrowthMb);
           return fail(m);
         }
       }

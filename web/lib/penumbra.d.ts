@@ -41,6 +41,18 @@ export interface Settings {
   resolutionScale?: number;
 }
 
+/** One row of the settings schema (the renderer's table, penumbra/settings.h). */
+export interface SettingSchemaEntry {
+  key: keyof Settings;
+  type: 'bool' | 'integer' | 'number' | 'toneMapper';
+  min?: number;
+  max?: number;
+  default: boolean | number | ToneMapper;
+  /** The accepted values, as text ("1..4096", "[0, 1)", "true or false", ...). */
+  range: string;
+  help: string;
+}
+
 /** The full set in effect (setSettings() resolves to it). */
 export type EffectiveSettings = Required<Settings>;
 
@@ -127,6 +139,8 @@ export declare class Viewer {
   readonly info: { context: string; report: string; scene: SceneInfo | null };
   readonly state: ViewerState;
   readonly settings: EffectiveSettings;
+  /** Every key setSettings() takes, from the renderer's settings schema plus budgetMs and resolutionScale. */
+  readonly settingsSchema: SettingSchemaEntry[];
   /** A scene file (.json), .gltf or .glb. `resources` supplies a .gltf's external files by name. */
   loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
   /** Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), or [r, g, b]. */

@@ -33,17 +33,23 @@ const DEFAULTS = {
   autoResize: true,      // keep the canvas's drawing buffer at its CSS size x pixelRatio
   pixelRatio: undefined, // default: min(devicePixelRatio, 2)
 };
-// Settings the wasm side knows (viewer_settings.cpp); the rest of setSettings() is JS-side.
-const WASM_SETTINGS = new Set(['exposure', 'toneMapper', 'environmentIntensity',
-  'environmentRotation', 'showBackground', 'backgroundBlur', 'frames', 'fd',
-  'occlusionDistance', 'lightSamples', 'shadowMapSize', 'screenSpaceIndirect', 'seed']);
-const JS_SETTINGS = new Set(['budgetMs', 'resolutionScale']);
+// The renderer's settings come from the settings schema in the wasm module (one table in C++,
+// penumbra/settings.h); these two are the JS side's own.
+const JS_SCHEMA = [
+  { key: 'budgetMs', type: 'number', min: 0, max: 1000, default: DEFAULTS.budgetMs, viewer: true,
+    range: '(0, 1000]', help: 'milliseconds per animation frame spent on intermediate frames' },
+  { key: 'resolutionScale', type: 'number', min: 0.1, max: 2, default: DEFAULTS.resolutionScale,
+    viewer: true, range: '[0.1, 2]',
+    help: 'render resolution / canvas resolution when the camera is still' },
+];
+const JS_SETTINGS = new Set(JS_SCHEMA.map((e) => e.key));
 
 let canvasIds = 0;
 let stagingIds = 0;
 
 export class Viewer {
   #mod; #pv; #canvas; #opts; #listeners = new Map();
+  #schema = []; #wasmKeys = new Set();  // the settings schema; keys setSettings() sends to wasm
   #overrides = {};             // wasm settings the user set (re-applied after loads/restores)
   #jsSettings;                 // budgetMs, resolutionScale
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
@@ -77,10 +83,13 @@ export class Viewer {
     const created = viewer.#call('pv_create', `#${CSS.escape(canvas.id)}`, opts.forceHalfFloat ? 1 : 0);
     viewer.#context = created.context;
     viewer.#report = created.report;
+    viewer.#schema = [...viewer.#call('pv_settings_schema').settings.filter((e) => e.viewer),
+                      ...JS_SCHEMA];
+    viewer.#wasmKeys = new Set(viewer.#schema.map((e) => e.key).filter((k) => !JS_SETTINGS.has(k)));
     viewer.#attach();
     const initial = {};
     for (const [k, v] of Object.entries(given)) {
-      if (WASM_SETTINGS.has(k) || JS_SETTINGS.has(k)) initial[k] = v;
+      if (viewer.#wasmKeys.has(k) || JS_SETTINGS.has(k)) initial[k] = v;
     }
     try {
       await viewer.setSettings(initial);
@@ -108,6 +117,7 @@ export class Viewer {
       pv_set_environment: w('pv_set_environment', s, [s, s]),
       pv_set_uniform_environment: w('pv_set_uniform_environment', s, [n, n, n]),
       pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
+      pv_settings_schema: w('pv_settings_schema', s, []),
       pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),
       pv_reset_camera: w('pv_reset_camera', s, []),
       pv_step: w('pv_step', n, []), pv_last_error: w('pv_last_error', s, []),
@@ -131,10 +141,15 @@ export class Viewer {
              canvasHeight: this.#canvas.height, motionScale: this.#motionScale,
              moving: this.#isMoving(performance.now()) };
   }
+  // Every setting setSettings() takes: {key, type, min, max, default, range, help}, from the
+  // renderer's schema plus the JS side's budgetMs and resolutionScale.
+  get settingsSchema() {
+    return this.#schema.map((e) => ({ ...e }));
+  }
+
   get settings() {
     const s = this.#lost ? { ...this.#overrides } : this.#call('pv_get_state').settings;
-    delete s.width;
-    delete s.height;
+    for (const k of Object.keys(s)) if (!this.#wasmKeys.has(k)) delete s[k];
     // Values pass through float32 in wasm: show 0.3, not 0.30000001192092896.
     for (const [k, v] of Object.entries(s)) {
       if (typeof v === 'number' && !Number.isInteger(v)) s[k] = Number(v.toPrecision(7));
@@ -235,17 +250,16 @@ export class Viewer {
     this.#restarted();
   }
 
-  // Any of: frames, fd, occlusionDistance, exposure, toneMapper ('pbr-neutral', 'aces',
-  // 'reinhard', 'none'), screenSpaceIndirect, lightSamples, shadowMapSize, seed,
-  // environmentIntensity, environmentRotation, showBackground, backgroundBlur, budgetMs,
-  // resolutionScale. Resolves to the full settings.
+  // Any key of settingsSchema (frames, fd, occlusionDistance, exposure, toneMapper,
+  // screenSpaceIndirect, indirectClamp, ..., budgetMs, resolutionScale). Resolves to the full
+  // settings.
   async setSettings(changes = {}) {
     this.#check();
     const wasm = {};
     const js = {};
     for (const [k, v] of Object.entries(changes)) {
       if (v === undefined) continue;
-      if (WASM_SETTINGS.has(k)) wasm[k] = v;
+      if (this.#wasmKeys.has(k)) wasm[k] = v;
       else if (JS_SETTINGS.has(k)) js[k] = v;
       else throw new PenumbraError(`unknown setting '${k}'`);
     }

@@ -33,10 +33,9 @@
 #include <GLES3/gl3.h>  // only for the 1-pixel read-back of pv_sync
 #include "penumbra/environment.h"
 #include "penumbra/gl_context.h"
+#include "penumbra/render_job.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
-#include "penumbra/scene_file.h"
-#include "viewer_settings.h"
 
 namespace {
 
@@ -73,7 +72,9 @@ const char* finish(const json& j) {
   return gResult.c_str();
 }
 
-json errorJson(const std::string& message) { return {{"error", message}}; }
+json errorJson(const std::string& message) {
+  return {{"error", message}};
+}
 
 // Runs `body` (returning json) and turns any escape into {"error": ...}.
 template <class F>
@@ -89,7 +90,9 @@ const char* guarded(F&& body) {
   }
 }
 
-json vec3Json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+json vec3Json(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 json cameraJson(const Camera& c) {
   const float* m = glm::value_ptr(c.world);
@@ -105,7 +108,7 @@ json cameraJson(const Camera& c) {
 }
 
 json stateJson(const Viewer& v) {
-  json j = {{"settings", web::settingsToJson(v.settings)},
+  json j = {{"settings", json::parse(settingsToJson(v.settings))},
             {"camera", cameraJson(v.camera)},
             {"environment", v.environmentName}};
   if (v.scene) {
@@ -147,99 +150,54 @@ Result<PackedEnvironment> loadEnvironmentFile(const std::string& path) {
   return loadEnvironment(path, {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples});
 }
 
-LoadOptions browserLoadOptions() {
-  // wasm32 memory tops out at 2 GiB, and SwiftShader/most GPUs cap WebGL textures at 8192.
-  return {.memoryBudgetBytes = int64_t{768} << 20, .maxTextureSize = 4096};
-}
-
 std::string lowerExtension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
   for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return e;
 }
 
-// Loads a scene file (.json), .gltf or .glb staged at `path`. Nothing changes unless every part
-// (model, camera, environment, settings) loaded: a bad file leaves the old scene on screen.
+// Loads a scene file (.json), .gltf or .glb staged at `path`, by the same rules as every other
+// program (RenderJob). Nothing changes unless every part (model, camera, environment, settings)
+// loaded: a bad file leaves the old scene on screen.
 json loadScene(Viewer& v, const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  std::optional<SceneFile> sceneFile;
-  std::string gltfPath = path;
-  if (ext == ".json") {
-    auto sf = loadSceneFile(path);
-    if (!sf) return errorJson(sf.message());
-    sceneFile = std::move(*sf);
-    gltfPath = sceneFile->gltfPath;
-  }
-  auto scene = loadGltf(gltfPath, browserLoadOptions());
-  if (!scene) return errorJson(scene.message());
-
-  Camera cam = defaultCamera(*scene);
-  const std::string cameraName = sceneFile ? sceneFile->camera : std::string();
-  if (!cameraName.empty()) {
-    auto idx = findCamera(*scene, cameraName);
-    if (!idx) return errorJson(idx.message());
-    cam = scene->cameras[static_cast<size_t>(*idx)];
-  } else if (!scene->cameras.empty()) {
-    cam = scene->cameras[0];
-  }
-
-  std::optional<PackedEnvironment> env;
-  std::string envName = v.environmentName;
-  RenderSettings settings = v.settings;
-  std::vector<std::string> warnings = scene->warnings;
-  if (sceneFile) {
-    if (!sceneFile->environmentPath.empty()) {
-      auto e = loadEnvironmentFile(sceneFile->environmentPath);
-      if (!e) return errorJson(e.message());
-      env = std::move(*e);
-      envName = fs::path(sceneFile->environmentPath).filename().string();
-    } else {
-      env = uniformEnvironment(sceneFile->uniformEnvironment);
-      const glm::vec3 u = sceneFile->uniformEnvironment;
-      envName = "uniform(" + std::to_string(u.r) + ", " + std::to_string(u.g) + ", " +
-                std::to_string(u.b) + ")";
-    }
-    // The scene file's look and progressive settings; the canvas decides the resolution.
-    settings = sceneFile->settings;
-    settings.width = v.settings.width;
-    settings.height = v.settings.height;
-    warnings.insert(warnings.end(), sceneFile->warnings.begin(), sceneFile->warnings.end());
-  } else {
-    // A bare model gets what penumbra-render gives it: default settings and, unless the user
-    // chose an environment, a uniform white one (not the previous scene file's, which may be
-    // the Cornell box's black).
-    settings = RenderSettings{};
-    settings.width = v.settings.width;
-    settings.height = v.settings.height;
-    if (!v.environmentFromUser) {
-      const SceneFile defaults;
-      env = uniformEnvironment(defaults.uniformEnvironment);
-      envName = "uniform white";
-    }
-  }
+  const bool sceneFile = lowerExtension(path) == ".json";
+  // An environment the user chose stays for a bare model; a scene file brings its own.
+  const bool keepEnvironment = !sceneFile && v.environmentFromUser;
+  JobRequest request;
+  request.scenePath = path;
+  // The canvas decides the resolution.
+  request.settings = {{"width", std::to_string(v.settings.width)},
+                      {"height", std::to_string(v.settings.height)}};
+  // wasm32 memory tops out at 2 GiB, and SwiftShader/most GPUs cap WebGL textures at 8192.
+  request.memoryBudgetBytes = int64_t{768} << 20;
+  request.maxTextureSize = 4096;
+  request.panorama = {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples};
+  if (keepEnvironment) request.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::None};
+  auto job = RenderJob::load(request);
+  if (!job) return errorJson(job.message());
 
   Renderer& r = *v.renderer;
-  if (auto st = r.setSettings(settings); !st) return errorJson(st.message());
-  if (env) {
-    if (auto st = r.setEnvironment(*env); !st) return errorJson(st.message());
-    v.environment = std::move(*env);
-    v.environmentName = envName;
+  if (auto st = r.setSettings(job->settings); !st) return errorJson(st.message());
+  if (!keepEnvironment) {
+    if (auto st = r.setEnvironment(job->environment); !st) return errorJson(st.message());
+    v.environment = std::move(job->environment);
+    v.environmentName = fs::path(job->environmentName).filename().string();
     v.environmentFromUser = false;
   }
-  if (auto st = r.setScene(*scene); !st) {
+  if (auto st = r.setScene(job->scene); !st) {
     // The GPU upload failed part-way: put the previous scene back so the viewer keeps working.
     if (v.scene) (void)r.setScene(*v.scene);
     (void)r.setSettings(v.settings);
     return errorJson(st.message());
   }
-  r.setCamera(cam);
-  v.settings = settings;
-  v.scene = std::move(*scene);
-  v.sceneCamera = cam;
-  v.camera = cam;
+  r.setCamera(job->camera);
+  v.settings = job->settings;
+  v.scene = std::move(job->scene);
+  v.sceneCamera = job->camera;
+  v.camera = job->camera;
   json j = stateJson(v);
-  j["warnings"] = warnings;
-  j["sceneFile"] = sceneFile.has_value();
+  j["warnings"] = job->warnings;
+  j["sceneFile"] = sceneFile;
   return j;
 }
 
@@ -264,8 +222,12 @@ struct InFolder {
 extern "C" {
 
 // Memory for JS to copy file bytes into (the module does not export malloc itself).
-EMSCRIPTEN_KEEPALIVE void* pv_alloc(int bytes) { return bytes > 0 ? std::malloc(bytes) : nullptr; }
-EMSCRIPTEN_KEEPALIVE void pv_free(void* p) { std::free(p); }
+EMSCRIPTEN_KEEPALIVE void* pv_alloc(int bytes) {
+  return bytes > 0 ? std::malloc(bytes) : nullptr;
+}
+EMSCRIPTEN_KEEPALIVE void pv_free(void* p) {
+  std::free(p);
+}
 
 // Creates the WebGL2 context on `selector` and the renderer. Returns {context, report} or
 // {error}. Settings start at the renderer's defaults; JS sets the resolution next.
@@ -357,19 +319,25 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, fl
   });
 }
 
-// Merges a JSON object of settings (web/src/viewer_settings.h) into the current ones.
+// Merges a JSON object of settings (keys of the settings schema, penumbra/settings.h) into the
+// current ones. The JS API passes only the keys the schema marks for the viewer; the canvas
+// size arrives here as width and height.
 EMSCRIPTEN_KEEPALIVE const char* pv_set_settings(const char* changes) {
   return guarded([&]() -> json {
     auto v = viewer();
     if (!v) return errorJson(v.message());
-    json parsed = json::parse(changes ? changes : "", nullptr, /*allow_exceptions=*/false);
-    if (parsed.is_discarded()) return errorJson("settings: not valid JSON");
-    auto merged = web::mergeSettings((*v)->settings, parsed);
+    auto merged = mergeSettingsJson((*v)->settings, changes ? changes : "");
     if (!merged) return errorJson(merged.message());
     if (auto st = (*v)->renderer->setSettings(*merged); !st) return errorJson(st.message());
     (*v)->settings = *merged;
-    return web::settingsToJson((*v)->settings);
+    return json::parse(settingsToJson((*v)->settings));
   });
+}
+
+// The settings schema: [{key, type, min, max, default, help, viewer, range}, ...]. The JS API
+// derives the keys setSettings() accepts from it.
+EMSCRIPTEN_KEEPALIVE const char* pv_settings_schema() {
+  return guarded([&]() -> json { return json{{"settings", json::parse(settingsSchemaJson())}}; });
 }
 
 EMSCRIPTEN_KEEPALIVE const char* pv_get_state() {
@@ -390,8 +358,9 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_camera(float ex, float ey, float ez, flo
     const glm::vec3 dir = target - eye;
     if (!(glm::length(dir) > 1e-6f) || !(glm::length(glm::cross(dir, up)) > 1e-9f) ||
         !(yfov > 0.0f && yfov < 3.1f) || !std::isfinite(ex + ey + ez + tx + ty + tz)) {
-      return errorJson("camera: eye and target must differ, up must not be parallel to the view, "
-                       "and yfov must be in (0, 3.1) radians");
+      return errorJson(
+          "camera: eye and target must differ, up must not be parallel to the view, "
+          "and yfov must be in (0, 3.1) radians");
     }
     Camera c;
     c.name = "orbit";

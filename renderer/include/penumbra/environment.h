@@ -23,5 +23,10 @@ Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options = {});
 // A uniform environment of the given radiance (white furnace, or a neutral default).
 PackedEnvironment uniformEnvironment(const glm::vec3& radiance, int faceSize = 8);
+// The neutral studio environment (assets/env/studio.hdr, compiled into the library: grey, two
+// softboxes and an overhead light, no sun): what lights a scene that has no lights of its own
+// and names no environment. Prefiltered on each call (small faces: tens of milliseconds).
+Result<PackedEnvironment> studioEnvironment(const EnvironmentLoadOptions& options = {
+                                                .faceSize = 64, .samples = 64});
 
 }  // namespace penumbra

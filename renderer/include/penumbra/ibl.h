@@ -105,6 +105,9 @@ glm::vec3 sampleCubemap(const Cubemap& cube, int mip, const glm::vec3& direction
 // cube map. Magnification is bilinear; minification is area-filtered (2x2 supersampling of
 // each cube texel from a box-filtered panorama pyramid at the matching level, trilinear).
 // Errors: not 2:1, faceSize not a power of two in [1, 16384].
+// The thread count a request resolves to: 0 means std::thread::hardware_concurrency().
+int resolveThreads(int requested);
+
 Result<Cubemap> panoramaToCubemap(const Image& panorama, int faceSize, int threads = 0);
 // An equirectangular view of one mip (bilinear), width x width/2, for previews.
 Image cubemapToPanorama(const Cubemap& cube, int mip, int width, int threads = 0);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -29,7 +30,7 @@ struct ProgressiveSettings {
   // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
   // default indirect clamp of Cycles, the reference the evaluation compares against.
   float indirectClamp = 10.0f;
-  uint32_t seed = 1;                // rotates every sample sequence
+  uint32_t seed = 1;  // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };
 
@@ -48,5 +49,54 @@ struct RenderSettings {
 
 // Checks ranges; the message names the offending setting.
 Status validate(const RenderSettings& settings);
+
+// ---------------------------------------------------------------- the settings schema
+// Every setting once: its key, type, range, default, help, where it lives in a scene file and
+// its command-line flag. Validation, scene-file reading and writing, the CLI flags, the wasm
+// settings bridge and the JS API's accepted keys are all derived from this table.
+
+enum class SettingType { Bool, Int, UInt, Float, ToneMapper };
+
+struct SettingInfo {
+  std::string_view key;      // the JS API key, also the key in the scene file's group
+  std::string_view group;    // scene-file object holding it ("" = top level, "resolution":
+                             // the [width, height] pair)
+  std::string_view fileKey;  // its name in that object
+  std::string_view flag;     // command-line flag ("" = none); a Bool whose flag starts with
+                             // "--no-" is a switch that sets it to false
+  SettingType type;
+  double min, max;
+  bool minExclusive, maxExclusive;
+  bool powerOfTwo;
+  bool viewer;  // settable through the web viewer's setSettings (the canvas sets the size)
+  std::string_view help;
+  // Number, 0/1 or the ToneMapper's index; set() takes a value already checked.
+  double (*get)(const RenderSettings&);
+  void (*set)(RenderSettings&, double);
+};
+
+// The whole table, in documentation order.
+std::span<const SettingInfo> settingsSchema();
+// nullptr when no setting has that key.
+const SettingInfo* findSetting(std::string_view key);
+// Checks one value against its entry ("invalid setting: <key> ..." on failure) and stores it.
+Status setSetting(RenderSettings& settings, const SettingInfo& info, double value);
+// Parses text as the setting's type (true/false/1/0 for Bool, a name for ToneMapper), checks
+// it and stores it. Used for command-line values.
+Status setSettingText(RenderSettings& settings, const SettingInfo& info, std::string_view text);
+// The setting as text, as setSettingText reads it back.
+std::string settingText(const RenderSettings& settings, const SettingInfo& info);
+// The range as text, e.g. "1..4096" or "(0, inf)", for help and messages.
+std::string settingRange(const SettingInfo& info);
+
+// All settings as one flat JSON object {key: value} (the web API's form).
+std::string settingsToJson(const RenderSettings& settings);
+// Applies the keys of a flat JSON object on top of `base`. Unknown keys, wrong types and
+// values out of range are errors naming the key; `viewerOnly` also refuses keys the viewer
+// does not take. The result is validated.
+Result<RenderSettings> mergeSettingsJson(const RenderSettings& base, std::string_view json,
+                                         bool viewerOnly = false);
+// The schema as JSON: [{key, type, min, max, default, help, viewer}, ...] for the JS API.
+std::string settingsSchemaJson();
 
 }  // namespace penumbra

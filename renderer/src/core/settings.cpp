@@ -1,9 +1,16 @@
 #include "penumbra/settings.h"
 
+#include "core/settings_json.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace penumbra {
 
@@ -33,41 +40,260 @@ Result<ToneMapper> parseToneMapper(std::string_view name) {
                    "' (expected pbr-neutral, aces, reinhard or none)");
 }
 
+namespace {
+
+using nlohmann::json;
+
+// One row per setting. get/set convert between the field and a double (bools as 0/1, the tone
+// mapper as its index); ranges are checked before set() runs.
+#define PN_FIELD(path, T)                                                        \
+  [](const RenderSettings& s) -> double { return static_cast<double>(s.path); }, \
+      [](RenderSettings& s, double v) { s.path = static_cast<T>(v); }
+#define PN_BOOL(path)                                                   \
+  [](const RenderSettings& s) -> double { return s.path ? 1.0 : 0.0; }, \
+      [](RenderSettings& s, double v) { s.path = v != 0.0; }
+
+const SettingInfo kSchema[] = {
+    {"width", "resolution", "0", "", SettingType::Int, 1, 16384, false, false, false, false,
+     "image width in pixels (the command line's --size WxH)", PN_FIELD(width, int)},
+    {"height", "resolution", "1", "", SettingType::Int, 1, 16384, false, false, false, false,
+     "image height in pixels", PN_FIELD(height, int)},
+    {"exposure", "", "exposure", "--exposure", SettingType::Float, -32, 32, false, false, false,
+     true, "exposure in EV: the image is scaled by 2^exposure before tone mapping",
+     PN_FIELD(exposure, float)},
+    {"toneMapper", "", "toneMapper", "--tonemap", SettingType::ToneMapper, 0, 3, false, false,
+     false, true, "pbr-neutral, aces, reinhard or none",
+     [](const RenderSettings& s) -> double { return static_cast<double>(s.toneMapper); },
+     [](RenderSettings& s, double v) {
+       s.toneMapper = static_cast<ToneMapper>(static_cast<int>(v));
+     }},
+    {"environmentIntensity", "environment", "intensity", "--env-intensity", SettingType::Float, 0,
+     1e6, false, false, false, true, "environment radiance multiplier",
+     PN_FIELD(environmentIntensity, float)},
+    {"environmentRotation", "environment", "rotation", "--env-rotation", SettingType::Float, -360,
+     360, false, false, false, true, "environment rotation about +Y in degrees",
+     PN_FIELD(environmentRotation, float)},
+    {"showBackground", "background", "show", "--no-background", SettingType::Bool, 0, 1, false,
+     false, false, true, "draw the environment behind the scene (else black)",
+     PN_BOOL(showBackground)},
+    {"backgroundBlur", "background", "blur", "--background-blur", SettingType::Float, 0, 1, false,
+     false, false, true, "background blur: 0 sharp, 1 the roughest prefiltered mip",
+     PN_FIELD(backgroundBlur, float)},
+    {"frames", "progressive", "frames", "--frames", SettingType::Int, 1, 4096, false, false, false,
+     true, "intermediate frames m", PN_FIELD(progressive.frames, int)},
+    {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
+     "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
+    {"occlusionDistance", "progressive", "occlusionDistance", "--occlusion-distance",
+     SettingType::Float, 0, 1e9, true, false, false, true,
+     "d_occ, the length of occlusion rays in scene units (metres)",
+     PN_FIELD(progressive.occlusionDistance, float)},
+    {"lightSamples", "progressive", "lightSamples", "--light-samples", SettingType::Int, 0, 4096,
+     false, false, false, true, "shadow-map samples per area light (0 = automatic)",
+     PN_FIELD(progressive.lightSamples, int)},
+    {"shadowMapSize", "progressive", "shadowMapSize", "--shadow-size", SettingType::Int, 16, 8192,
+     false, false, true, true, "shadow-map size in texels (a power of two)",
+     PN_FIELD(progressive.shadowMapSize, int)},
+    {"screenSpaceIndirect", "progressive", "screenSpaceIndirect", "--no-ssgi", SettingType::Bool, 0,
+     1, false, false, false, true, "one-bounce screen-space indirect light",
+     PN_BOOL(progressive.screenSpaceIndirect)},
+    {"indirectClamp", "progressive", "indirectClamp", "--indirect-clamp", SettingType::Float, 0,
+     1e9, false, false, false, true,
+     "largest radiance one screen-space indirect sample brings back (0 = no limit)",
+     PN_FIELD(progressive.indirectClamp, float)},
+    {"seed", "progressive", "seed", "--seed", SettingType::UInt, 0, 4294967295.0, false, false,
+     false, true, "seed of the sample sequences", PN_FIELD(progressive.seed, uint32_t)},
+};
+#undef PN_FIELD
+#undef PN_BOOL
+
+const char* typeName(SettingType t) {
+  switch (t) {
+    case SettingType::Bool:
+      return "bool";
+    case SettingType::Int:
+    case SettingType::UInt:
+      return "integer";
+    case SettingType::Float:
+      return "number";
+    case SettingType::ToneMapper:
+      return "toneMapper";
+  }
+  return "?";
+}
+
+std::string number(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+bool integral(SettingType t) {
+  return t == SettingType::Int || t == SettingType::UInt;
+}
+
+}  // namespace
+
+Result<double> settingFromJson(const json& v, const SettingInfo& info) {
+  const std::string key(info.key);
+  switch (info.type) {
+    case SettingType::Bool:
+      if (!v.is_boolean()) return makeError("setting '" + key + "' must be true or false");
+      return v.get<bool>() ? 1.0 : 0.0;
+    case SettingType::ToneMapper: {
+      if (!v.is_string()) return makeError("setting '" + key + "' must be a tone mapper name");
+      auto t = parseToneMapper(v.get<std::string>());
+      if (!t) return t.error();
+      return static_cast<double>(*t);
+    }
+    case SettingType::Int:
+    case SettingType::UInt:
+      // JSON.stringify writes whole numbers without a fraction; 3.5 frames is a mistake.
+      if (!v.is_number_integer() &&
+          !(v.is_number_float() && std::trunc(v.get<double>()) == v.get<double>())) {
+        return makeError("setting '" + key + "' must be an integer");
+      }
+      return v.is_number_unsigned()  ? static_cast<double>(v.get<uint64_t>())
+             : v.is_number_integer() ? static_cast<double>(v.get<int64_t>())
+                                     : v.get<double>();
+    case SettingType::Float:
+      if (!v.is_number()) return makeError("setting '" + key + "' must be a number");
+      return v.get<double>();
+  }
+  return makeError("setting '" + key + "': unknown type");
+}
+
+json settingJson(const RenderSettings& s, const SettingInfo& info) {
+  const double v = info.get(s);
+  switch (info.type) {
+    case SettingType::Bool:
+      return v != 0.0;
+    case SettingType::ToneMapper:
+      return toneMapperName(static_cast<ToneMapper>(static_cast<int>(v)));
+    case SettingType::Int:
+      return static_cast<int64_t>(v);
+    case SettingType::UInt:
+      return static_cast<uint64_t>(v);
+    case SettingType::Float:
+      return static_cast<double>(static_cast<float>(v));
+  }
+  return nullptr;
+}
+
+std::span<const SettingInfo> settingsSchema() {
+  return kSchema;
+}
+
+const SettingInfo* findSetting(std::string_view key) {
+  for (const SettingInfo& i : kSchema) {
+    if (i.key == key) return &i;
+  }
+  return nullptr;
+}
+
+std::string settingRange(const SettingInfo& info) {
+  if (info.type == SettingType::Bool) return "true or false";
+  if (info.type == SettingType::ToneMapper) return "pbr-neutral, aces, reinhard or none";
+  if (integral(info.type)) return number(info.min) + ".." + number(info.max);
+  return std::string(info.minExclusive ? "(" : "[") + number(info.min) + ", " + number(info.max) +
+         (info.maxExclusive ? ")" : "]");
+}
+
+Status setSetting(RenderSettings& s, const SettingInfo& info, double v) {
+  const bool inRange = std::isfinite(v) && (info.minExclusive ? v > info.min : v >= info.min) &&
+                       (info.maxExclusive ? v < info.max : v <= info.max);
+  const bool whole = !integral(info.type) || std::trunc(v) == v;
+  const bool pow2 =
+      !info.powerOfTwo ||
+      (whole && inRange && (static_cast<int64_t>(v) & (static_cast<int64_t>(v) - 1)) == 0);
+  if (!inRange || !whole || !pow2) {
+    return makeError("invalid setting: " + std::string(info.key) + " " + number(v) + " (must be " +
+                     (info.powerOfTwo       ? "a power of two in "
+                      : integral(info.type) ? "an integer in "
+                                            : "in ") +
+                     settingRange(info) + ")");
+  }
+  info.set(s, v);
+  return {};
+}
+
+Status setSettingText(RenderSettings& s, const SettingInfo& info, std::string_view text) {
+  const std::string t(text);
+  if (info.type == SettingType::ToneMapper) {
+    auto tm = parseToneMapper(t);
+    if (!tm) return tm.error();
+    return setSetting(s, info, static_cast<double>(*tm));
+  }
+  if (info.type == SettingType::Bool) {
+    if (t == "true" || t == "1" || t == "on") return setSetting(s, info, 1.0);
+    if (t == "false" || t == "0" || t == "off") return setSetting(s, info, 0.0);
+    return makeError("invalid setting: " + std::string(info.key) + " '" + t +
+                     "' (must be true or false)");
+  }
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size()) {
+    return makeError("invalid setting: " + std::string(info.key) + " '" + t + "' is not " +
+                     (integral(info.type) ? "an integer" : "a number"));
+  }
+  return setSetting(s, info, v);
+}
+
+std::string settingText(const RenderSettings& s, const SettingInfo& info) {
+  const json j = settingJson(s, info);
+  return j.is_string() ? j.get<std::string>() : j.dump();
+}
+
 Status validate(const RenderSettings& s) {
-  auto bad = [](const std::string& what) { return makeError("invalid setting: " + what); };
-  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384) {
-    return bad("resolution " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-               " (each side must be 1..16384)");
-  }
-  const auto& p = s.progressive;
-  if (p.frames < 1 || p.frames > 4096) {
-    return bad("frames " + std::to_string(p.frames) + " (must be 1..4096)");
-  }
-  if (!(p.directDelay >= 0.0f && p.directDelay < 1.0f)) {
-    return bad("fd " + std::to_string(p.directDelay) + " (must be in [0, 1))");
-  }
-  if (!(p.occlusionDistance > 0.0f) || !std::isfinite(p.occlusionDistance)) {
-    return bad("occlusion distance must be positive");
-  }
-  if (!(p.indirectClamp >= 0.0f) || !std::isfinite(p.indirectClamp)) {
-    return bad("indirect clamp must be 0 (off) or positive");
-  }
-  if (p.lightSamples < 0 || p.lightSamples > 4096) {
-    return bad("light samples " + std::to_string(p.lightSamples) + " (must be 0..4096)");
-  }
-  if (p.shadowMapSize < 16 || p.shadowMapSize > 8192 ||
-      (p.shadowMapSize & (p.shadowMapSize - 1)) != 0) {
-    return bad("shadow-map size " + std::to_string(p.shadowMapSize) +
-               " (must be a power of two in 16..8192)");
-  }
-  if (!std::isfinite(s.exposure) || !std::isfinite(s.environmentIntensity) ||
-      s.environmentIntensity < 0.0f || !std::isfinite(s.environmentRotation)) {
-    return bad("exposure, environment intensity and rotation must be finite (intensity >= 0)");
-  }
-  if (!(s.backgroundBlur >= 0.0f && s.backgroundBlur <= 1.0f)) {
-    return bad("background blur must be in [0, 1]");
+  for (const SettingInfo& info : kSchema) {
+    RenderSettings copy = s;
+    PN_TRY(setSetting(copy, info, info.get(s)));
   }
   return {};
+}
+
+std::string settingsToJson(const RenderSettings& s) {
+  json j = json::object();
+  for (const SettingInfo& info : kSchema) j[std::string(info.key)] = settingJson(s, info);
+  return j.dump();
+}
+
+Result<RenderSettings> mergeSettingsJson(const RenderSettings& base, std::string_view text,
+                                         bool viewerOnly) {
+  const json changes = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (changes.is_discarded() || !changes.is_object()) {
+    return makeError("settings must be a JSON object");
+  }
+  RenderSettings s = base;
+  for (const auto& [key, value] : changes.items()) {
+    const SettingInfo* info = findSetting(key);
+    if (!info || (viewerOnly && !info->viewer)) return makeError("unknown setting '" + key + "'");
+    if (value.is_null()) continue;
+    auto v = settingFromJson(value, *info);
+    if (!v) return v.error();
+    PN_TRY(setSetting(s, *info, *v));
+  }
+  PN_TRY(validate(s));
+  return s;
+}
+
+std::string settingsSchemaJson() {
+  const RenderSettings defaults;
+  json all = json::array();
+  for (const SettingInfo& info : kSchema) {
+    json e = {{"key", info.key},
+              {"type", typeName(info.type)},
+              {"default", settingJson(defaults, info)},
+              {"help", info.help},
+              {"viewer", info.viewer},
+              {"range", settingRange(info)}};
+    if (info.type != SettingType::Bool && info.type != SettingType::ToneMapper) {
+      e["min"] = info.min;
+      if (std::isfinite(info.max)) e["max"] = info.max;
+    }
+    all.push_back(std::move(e));
+  }
+  return all.dump();
 }
 
 }  // namespace penumbra

@@ -1,4 +1,4 @@
-#include "scene/gpu_environment.h"
+#include "gpu/gpu_environment.h"
 
 #include <mutex>
 #include <string>

@@ -1,4 +1,4 @@
-#include "scene/gpu_scene.h"
+#include "gpu/gpu_scene.h"
 
 #include <algorithm>
 #include <string>

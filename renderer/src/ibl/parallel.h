@@ -5,10 +5,9 @@
 
 #include <functional>
 
-namespace penumbra::ibl {
+#include "penumbra/ibl.h"  // resolveThreads
 
-// Resolves a requested thread count: 0 means std::thread::hardware_concurrency().
-int resolveThreads(int requested);
+namespace penumbra::ibl {
 
 // Calls body(i) for every i in [0, count), on up to `threads` threads (the caller's included).
 void parallelFor(int count, int threads, const std::function<void(int)>& body);

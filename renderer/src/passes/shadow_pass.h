@@ -12,7 +12,7 @@
 
 #include "gl/objects.h"
 #include "gl/program.h"
-#include "scene/gpu_scene.h"
+#include "gpu/gpu_scene.h"
 
 namespace penumbra::passes {
 

@@ -17,8 +17,8 @@
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
 #include "render/camera_math.h"
-#include "scene/gpu_environment.h"
-#include "scene/gpu_scene.h"
+#include "gpu/gpu_environment.h"
+#include "gpu/gpu_scene.h"
 
 namespace penumbra {
 namespace {

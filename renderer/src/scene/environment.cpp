@@ -1,12 +1,17 @@
 #include "penumbra/environment.h"
 
 #include <fstream>
+#include <span>
 
+#include "image/rgbe.h"
 #include "penumbra/ibl.h"
 #include "penumbra/image.h"
 #include "penumbra/version.h"
 
 namespace penumbra {
+namespace embedded {
+std::span<const unsigned char> studioHdr();  // cmake/EmbedBinaryScript.cmake
+}  // namespace embedded
 
 bool isPackedEnvironmentFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -18,18 +23,35 @@ bool isPackedEnvironmentFile(const std::string& path) {
   return head.rfind("#?", 0) == 0 && head.find(std::string("\n") + kPackedHeaderKey + "=") < end;
 }
 
+namespace {
+
+Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadOptions& options,
+                                            const std::string& name) {
+  const int64_t bad = ibl::sanitizeRadiance(image);
+  (void)bad;  // counted by the prefilter CLI; here silently clamped like any renderer would
+  ibl::PrefilterOptions po;
+  po.faceSize = options.faceSize;
+  po.samples = options.samples;
+  auto env = ibl::prefilterCpu(image, po);
+  if (!env) return makeError(name + ": " + env.message());
+  return env;
+}
+
+}  // namespace
+
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options) {
   if (isPackedEnvironmentFile(path)) return readPackedEnvironment(path);
   auto image = readImage(path);
   if (!image) return image.error();
-  const int64_t bad = ibl::sanitizeRadiance(*image);
-  (void)bad;  // counted by the prefilter CLI; here silently clamped like any renderer would
-  ibl::PrefilterOptions po;
-  po.faceSize = options.faceSize;
-  po.samples = options.samples;
-  auto env = ibl::prefilterCpu(*image, po);
-  if (!env) return makeError(path + ": " + env.message());
+  return prefilterPanorama(*image, options, path);
+}
+
+Result<PackedEnvironment> studioEnvironment(const EnvironmentLoadOptions& options) {
+  auto file = rgbe::decodeFile(embedded::studioHdr(), "studio environment");
+  if (!file) return file.error();
+  auto env = prefilterPanorama(file->image, options, "studio environment");
+  if (env) env->generator = std::string("penumbra ") + version() + " studio";
   return env;
 }
 

@@ -1,6 +1,10 @@
 #include "penumbra/scene_file.h"
 
+#include "core/settings_json.h"
+
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -80,24 +84,84 @@ Status read(const json& obj, const char* key, T& out, const std::string& where) 
   return {};
 }
 
-Status parseProgressive(const json& p, ProgressiveSettings& s, std::vector<std::string>& warnings) {
-  if (!p.is_object()) return makeError("'progressive' must be an object");
-  warnUnknown(p,
-              {"frames", "fd", "occlusionDistance", "lightSamples", "shadowMapSize",
-               "screenSpaceIndirect", "indirectClamp", "seed"},
-              "progressive", warnings);
-  PN_TRY(read(p, "frames", s.frames, "progressive"));
-  PN_TRY(read(p, "fd", s.directDelay, "progressive"));
-  PN_TRY(read(p, "occlusionDistance", s.occlusionDistance, "progressive"));
-  PN_TRY(read(p, "lightSamples", s.lightSamples, "progressive"));
-  PN_TRY(read(p, "shadowMapSize", s.shadowMapSize, "progressive"));
-  PN_TRY(read(p, "screenSpaceIndirect", s.screenSpaceIndirect, "progressive"));
-  PN_TRY(read(p, "indirectClamp", s.indirectClamp, "progressive"));
-  PN_TRY(read(p, "seed", s.seed, "progressive"));
+// The scene-file groups of the settings schema, and the keys each may hold.
+std::set<std::string> groupKeys(std::string_view group) {
+  std::set<std::string> keys;
+  for (const SettingInfo& info : settingsSchema()) {
+    if (info.group == group) keys.insert(std::string(info.fileKey));
+  }
+  return keys;
+}
+
+// One setting from its JSON value, checked by the schema.
+Status readSetting(const json& v, const SettingInfo& info, RenderSettings& s,
+                   const std::string& where) {
+  auto value = settingFromJson(v, info);
+  if (!value) return makeError(where + ": " + value.message());
+  if (auto st = setSetting(s, info, *value); !st) return makeError(where + ": " + st.message());
+  return {};
+}
+
+// Reads every setting of `group` present in `obj`.
+Status readGroup(const json& obj, std::string_view group, RenderSettings& s,
+                 const std::string& where) {
+  for (const SettingInfo& info : settingsSchema()) {
+    if (info.group != group) continue;
+    auto it = obj.find(std::string(info.fileKey));
+    if (it == obj.end()) continue;
+    PN_TRY(readSetting(*it, info, s, where));
+  }
   return {};
 }
 
 }  // namespace
+
+Result<EnvironmentSpec> parseEnvironmentSpec(std::string_view text, const std::string& baseDir) {
+  EnvironmentSpec spec;
+  const std::string t(text);
+  if (t.empty()) return makeError("environment: empty (expected none, studio, r,g,b or a file)");
+  if (t == "none" || t == "black") {
+    spec.kind = EnvironmentSpec::Kind::None;
+  } else if (t == "studio") {
+    spec.kind = EnvironmentSpec::Kind::Studio;
+  } else if (t == "default") {
+    spec.kind = EnvironmentSpec::Kind::Default;
+  } else if (t.find(',') != std::string::npos && !fs::exists(resolve(baseDir, t))) {
+    float r = 0, g = 0, b = 0;
+    char tail = 0;
+    if (std::sscanf(t.c_str(), "%f,%f,%f%c", &r, &g, &b, &tail) != 3 || !std::isfinite(r) ||
+        !std::isfinite(g) || !std::isfinite(b) || r < 0 || g < 0 || b < 0) {
+      return makeError("environment '" + t +
+                       "': expected none, studio, r,g,b (three radiances >= 0) or a file");
+    }
+    spec.kind = EnvironmentSpec::Kind::Uniform;
+    spec.radiance = glm::vec3(r, g, b);
+  } else {
+    spec.kind = EnvironmentSpec::Kind::File;
+    spec.path = resolve(baseDir, t);
+  }
+  return spec;
+}
+
+std::string environmentSpecText(const EnvironmentSpec& spec) {
+  switch (spec.kind) {
+    case EnvironmentSpec::Kind::Default:
+      return "default";
+    case EnvironmentSpec::Kind::None:
+      return "none";
+    case EnvironmentSpec::Kind::Studio:
+      return "studio";
+    case EnvironmentSpec::Kind::File:
+      return spec.path;
+    case EnvironmentSpec::Kind::Uniform: {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g", spec.radiance.r, spec.radiance.g,
+                    spec.radiance.b);
+      return buf;
+    }
+  }
+  return "default";
+}
 
 Result<SceneFile> parseSceneJson(const std::string& text, const std::string& baseDir,
                                  const std::string& name) {
@@ -106,10 +170,10 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   if (!doc.is_object()) return makeError(name + ": a scene file is a JSON object");
   SceneFile sf;
   RenderSettings& s = sf.settings;
-  warnUnknown(doc,
-              {"gltf", "environment", "camera", "resolution", "exposure", "toneMapper",
-               "background", "progressive", "$schema", "comment"},
-              "the scene file", sf.warnings);
+  std::set<std::string> topLevel = groupKeys("");
+  topLevel.insert({"gltf", "environment", "camera", "resolution", "background", "progressive",
+                   "$schema", "comment"});
+  warnUnknown(doc, topLevel, "the scene file", sf.warnings);
   auto fail = [&](const Error& e) { return makeError(name + ": " + e.message); };
 
   std::string gltf;
@@ -119,64 +183,114 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
 
   if (auto it = doc.find("environment"); it != doc.end()) {
     if (it->is_string()) {
-      sf.environmentPath = resolve(baseDir, it->get<std::string>());
+      auto spec = parseEnvironmentSpec(it->get<std::string>(), baseDir);
+      if (!spec) return fail(spec.error());
+      sf.environment = *spec;
     } else if (it->is_object()) {
-      warnUnknown(*it, {"file", "uniform", "intensity", "rotation"}, "environment", sf.warnings);
-      std::string file;
+      std::set<std::string> known = groupKeys("environment");
+      known.insert({"file", "uniform", "preset"});
+      warnUnknown(*it, known, "environment", sf.warnings);
+      std::string file, preset;
       if (auto st = read(*it, "file", file, "environment"); !st) return fail(st.error());
-      sf.environmentPath = resolve(baseDir, file);
+      if (auto st = read(*it, "preset", preset, "environment"); !st) return fail(st.error());
       std::vector<float> uni;
       if (auto st = read(*it, "uniform", uni, "environment"); !st) return fail(st.error());
-      if (!uni.empty()) {
-        if (uni.size() != 3) return makeError(name + ": environment.uniform must be [r, g, b]");
-        sf.uniformEnvironment = glm::vec3(uni[0], uni[1], uni[2]);
+      if (int(!file.empty()) + int(!preset.empty()) + int(it->contains("uniform")) > 1) {
+        return makeError(name + ": environment: give one of 'file', 'uniform' and 'preset'");
       }
-      if (auto st = read(*it, "intensity", s.environmentIntensity, "environment"); !st) {
-        return fail(st.error());
+      if (!file.empty()) {
+        sf.environment.kind = EnvironmentSpec::Kind::File;
+        sf.environment.path = resolve(baseDir, file);
+      } else if (!preset.empty()) {
+        if (preset != "none" && preset != "studio") {
+          return makeError(name + ": environment.preset must be \"none\" or \"studio\"");
+        }
+        auto spec = parseEnvironmentSpec(preset);
+        if (!spec) return fail(spec.error());
+        sf.environment = *spec;
+      } else if (it->contains("uniform")) {
+        if (uni.size() != 3 || !std::isfinite(uni[0]) || !std::isfinite(uni[1]) ||
+            !std::isfinite(uni[2]) || uni[0] < 0 || uni[1] < 0 || uni[2] < 0) {
+          return makeError(name + ": environment.uniform must be [r, g, b] (radiances >= 0)");
+        }
+        sf.environment.kind = EnvironmentSpec::Kind::Uniform;
+        sf.environment.radiance = glm::vec3(uni[0], uni[1], uni[2]);
       }
-      if (auto st = read(*it, "rotation", s.environmentRotation, "environment"); !st) {
-        return fail(st.error());
-      }
+      if (auto st = readGroup(*it, "environment", s, "environment"); !st) return fail(st.error());
     } else {
-      return makeError(name + ": 'environment' must be a file name or an object");
+      return makeError(name + ": 'environment' must be a file name, none, studio or an object");
     }
   }
   if (auto it = doc.find("camera"); it != doc.end()) {
     if (it->is_string()) {
       sf.camera = it->get<std::string>();
     } else if (it->is_number_integer()) {
+      if (!fitsIntegral<int>(*it)) return makeError(name + ": 'camera' index is out of range");
       sf.camera = std::to_string(it->get<int>());
     } else {
       return makeError(name + ": 'camera' must be a name or an index");
     }
   }
   if (auto it = doc.find("resolution"); it != doc.end()) {
-    std::vector<int> r;
-    if (auto st = read(doc, "resolution", r, "scene"); !st || r.size() != 2) {
+    if (!it->is_array() || it->size() != 2) {
       return makeError(name + ": 'resolution' must be [width, height]");
     }
-    s.width = r[0];
-    s.height = r[1];
+    for (const SettingInfo& info : settingsSchema()) {
+      if (info.group != "resolution") continue;
+      const json& v = (*it)[info.fileKey == "0" ? 0 : 1];
+      if (auto st = readSetting(v, info, s, "resolution"); !st) return fail(st.error());
+    }
   }
-  if (auto st = read(doc, "exposure", s.exposure, "scene"); !st) return fail(st.error());
-  std::string tm;
-  if (auto st = read(doc, "toneMapper", tm, "scene"); !st) return fail(st.error());
-  if (!tm.empty()) {
-    auto t = parseToneMapper(tm);
-    if (!t) return fail(t.error());
-    s.toneMapper = *t;
-  }
-  if (auto it = doc.find("background"); it != doc.end()) {
-    if (!it->is_object()) return makeError(name + ": 'background' must be an object");
-    warnUnknown(*it, {"show", "blur"}, "background", sf.warnings);
-    if (auto st = read(*it, "show", s.showBackground, "background"); !st) return fail(st.error());
-    if (auto st = read(*it, "blur", s.backgroundBlur, "background"); !st) return fail(st.error());
-  }
-  if (auto it = doc.find("progressive"); it != doc.end()) {
-    if (auto st = parseProgressive(*it, s.progressive, sf.warnings); !st) return fail(st.error());
+  if (auto st = readGroup(doc, "", s, "scene"); !st) return fail(st.error());
+  for (const char* group : {"background", "progressive"}) {
+    auto it = doc.find(group);
+    if (it == doc.end()) continue;
+    if (!it->is_object()) return makeError(name + ": '" + group + "' must be an object");
+    warnUnknown(*it, groupKeys(group), group, sf.warnings);
+    if (auto st = readGroup(*it, group, s, group); !st) return fail(st.error());
   }
   if (auto st = validate(s); !st) return fail(st.error());
   return sf;
+}
+
+std::string sceneFileJson(const SceneFile& sf) {
+  json doc = json::object();
+  doc["gltf"] = sf.gltfPath;
+  json env = json::object();
+  switch (sf.environment.kind) {
+    case EnvironmentSpec::Kind::Default:
+      break;
+    case EnvironmentSpec::Kind::None:
+      env["preset"] = "none";
+      break;
+    case EnvironmentSpec::Kind::Studio:
+      env["preset"] = "studio";
+      break;
+    case EnvironmentSpec::Kind::File:
+      env["file"] = sf.environment.path;
+      break;
+    case EnvironmentSpec::Kind::Uniform:
+      env["uniform"] = {sf.environment.radiance.r, sf.environment.radiance.g,
+                        sf.environment.radiance.b};
+      break;
+  }
+  if (!sf.camera.empty()) doc["camera"] = sf.camera;
+  doc["resolution"] = {sf.settings.width, sf.settings.height};
+  json groups = {{"background", json::object()}, {"progressive", json::object()}};
+  for (const SettingInfo& info : settingsSchema()) {
+    const json v = settingJson(sf.settings, info);
+    if (info.group.empty()) {
+      doc[std::string(info.fileKey)] = v;
+    } else if (info.group == "environment") {
+      env[std::string(info.fileKey)] = v;
+    } else if (info.group != "resolution") {
+      groups[std::string(info.group)][std::string(info.fileKey)] = v;
+    }
+  }
+  doc["environment"] = env;
+  doc["background"] = groups["background"];
+  doc["progressive"] = groups["progressive"];
+  return doc.dump(2) + "\n";
 }
 
 Result<SceneFile> loadSceneFile(const std::string& path) {

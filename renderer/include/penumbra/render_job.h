@@ -1,0 +1,67 @@
+// RenderJob: the application layer's single way of turning what a user asks for (a scene file
+// or a glTF, overrides from a command line or an API, a memory budget) into what a Renderer
+// needs: the scene, the camera, the environment and the settings. Every program uses it
+// (penumbra-render, -bench, -soak, the web viewer, the tests), so the rules and the one-line
+// errors are the same everywhere:
+//  - settings: the scene file's, then the request's overrides (schema keys), then validated;
+//  - camera: the request's, else the scene file's, else the glTF's first, else a framing of the
+//    scene's bounds; a name or index that does not exist is an error;
+//  - environment: the request's, else the scene file's, else by rule: black when the scene
+//    has lights of its own, the neutral studio environment when it has none;
+//  - memory: the decoded scene and, separately, the render targets' estimated GPU memory must
+//    each fit the budget.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "penumbra/environment.h"
+#include "penumbra/environment_format.h"
+#include "penumbra/error.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+#include "penumbra/scene_file.h"
+#include "penumbra/settings.h"
+
+namespace penumbra {
+
+struct JobRequest {
+  std::string scenePath;  // a scene file (.json) or a model (.gltf/.glb)
+  // Settings over the scene file's, as (schema key, text) pairs: {"frames", "64"}.
+  std::vector<std::pair<std::string, std::string>> settings;
+  std::string camera;                          // name or index; empty: see above
+  std::optional<EnvironmentSpec> environment;  // replaces the scene file's
+  int64_t memoryBudgetBytes = int64_t{2} << 30;
+  int maxTextureSize = 4096;
+  EnvironmentLoadOptions panorama;  // how panoramas are prefiltered on load
+};
+
+struct RenderJob {
+  SceneFile sceneFile;  // as read (before the request's overrides)
+  Scene scene;
+  Camera camera;
+  PackedEnvironment environment;
+  std::string environmentName;  // "none", "studio", "uniform(r, g, b)" or the file name
+  RenderSettings settings;
+  std::vector<std::string> warnings;  // the scene file's, then the glTF's
+
+  static Result<RenderJob> load(const JobRequest& request);
+  // Sets settings, scene, environment and camera on a renderer.
+  Status applyTo(Renderer& renderer) const;
+};
+
+// Settings over a base, as the request's overrides are applied (schema keys and text).
+Result<RenderSettings> applySettingOverrides(
+    RenderSettings base, const std::vector<std::pair<std::string, std::string>>& overrides);
+// Resolves an environment spec for a scene (Kind::Default by the rule above).
+Result<PackedEnvironment> resolveEnvironment(const EnvironmentSpec& spec, const Scene& scene,
+                                             const EnvironmentLoadOptions& panorama,
+                                             std::string* name = nullptr);
+// Estimated GPU memory of the render targets for these settings, and the budget check.
+int64_t estimateTargetBytes(const RenderSettings& settings);
+Status checkTargetBudget(const RenderSettings& settings, int64_t budgetBytes);
+
+}  // namespace penumbra

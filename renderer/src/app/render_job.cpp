@@ -1,0 +1,119 @@
+#include "penumbra/render_job.h"
+
+#include <cstdio>
+
+namespace penumbra {
+
+Result<RenderSettings> applySettingOverrides(
+    RenderSettings s, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  for (const auto& [key, text] : overrides) {
+    const SettingInfo* info = findSetting(key);
+    if (!info) return makeError("unknown setting '" + key + "'");
+    PN_TRY(setSettingText(s, *info, text));
+  }
+  PN_TRY(validate(s));
+  return s;
+}
+
+Result<PackedEnvironment> resolveEnvironment(const EnvironmentSpec& spec, const Scene& scene,
+                                             const EnvironmentLoadOptions& panorama,
+                                             std::string* name) {
+  using Kind = EnvironmentSpec::Kind;
+  Kind kind = spec.kind;
+  if (kind == Kind::Default) kind = scene.lights.empty() ? Kind::Studio : Kind::None;
+  std::string label;
+  Result<PackedEnvironment> env = makeError("no environment");
+  switch (kind) {
+    case Kind::None:
+    case Kind::Default:
+      env = uniformEnvironment(glm::vec3(0.0f));
+      label = "none";
+      break;
+    case Kind::Studio:
+      env = studioEnvironment();
+      label = "studio";
+      break;
+    case Kind::Uniform: {
+      env = uniformEnvironment(spec.radiance);
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "uniform(%g, %g, %g)", spec.radiance.r, spec.radiance.g,
+                    spec.radiance.b);
+      label = buf;
+      break;
+    }
+    case Kind::File:
+      env = loadEnvironment(spec.path, panorama);
+      label = spec.path;
+      break;
+  }
+  if (env && name) *name = label;
+  return env;
+}
+
+int64_t estimateTargetBytes(const RenderSettings& s) {
+  // About 5 RGBA32F colour targets and 2 32-bit depth buffers per pixel, plus up to 4 shadow
+  // maps of 32-bit depth.
+  const int64_t pixels = int64_t{s.width} * s.height;
+  const int64_t shadow = int64_t{s.progressive.shadowMapSize} * s.progressive.shadowMapSize;
+  return pixels * (5 * 16 + 2 * 4) + 4 * shadow * 4;
+}
+
+Status checkTargetBudget(const RenderSettings& s, int64_t budgetBytes) {
+  const int64_t need = estimateTargetBytes(s);
+  if (need <= budgetBytes) return {};
+  return makeError("render targets for " + std::to_string(s.width) + "x" +
+                   std::to_string(s.height) + " need about " + std::to_string(need >> 20) +
+                   " MB of GPU memory, over the memory budget of " +
+                   std::to_string(budgetBytes >> 20) + " MB");
+}
+
+Result<RenderJob> RenderJob::load(const JobRequest& request) {
+  if (request.memoryBudgetBytes < 1) {
+    return makeError("the memory budget must be a positive number of bytes");
+  }
+  RenderJob job;
+  auto sf = loadSceneFile(request.scenePath);
+  if (!sf) return sf.error();
+  job.sceneFile = std::move(*sf);
+  job.warnings = job.sceneFile.warnings;
+  auto settings = applySettingOverrides(job.sceneFile.settings, request.settings);
+  if (!settings) return settings.error();
+  job.settings = *settings;
+  // Refused before anything is decoded or allocated.
+  PN_TRY(checkTargetBudget(job.settings, request.memoryBudgetBytes));
+
+  LoadOptions lo;
+  lo.memoryBudgetBytes = request.memoryBudgetBytes;
+  lo.maxTextureSize = request.maxTextureSize;
+  auto scene = loadGltf(job.sceneFile.gltfPath, lo);
+  if (!scene) return scene.error();
+  job.scene = std::move(*scene);
+  job.warnings.insert(job.warnings.end(), job.scene.warnings.begin(), job.scene.warnings.end());
+
+  const std::string& cameraName = !request.camera.empty() ? request.camera : job.sceneFile.camera;
+  if (!cameraName.empty()) {
+    auto idx = findCamera(job.scene, cameraName);
+    if (!idx) return idx.error();
+    job.camera = job.scene.cameras[static_cast<size_t>(*idx)];
+  } else if (!job.scene.cameras.empty()) {
+    job.camera = job.scene.cameras[0];
+  } else {
+    job.camera = defaultCamera(job.scene);
+  }
+
+  const EnvironmentSpec spec = request.environment.value_or(job.sceneFile.environment);
+  auto env = resolveEnvironment(spec, job.scene, request.panorama, &job.environmentName);
+  if (!env) return env.error();
+  job.environment = std::move(*env);
+  return job;
+}
+
+Status RenderJob::applyTo(Renderer& r) const {
+  PN_TRY(r.setSettings(settings));
+  PN_TRY(r.setScene(scene));
+  PN_TRY(r.setEnvironment(environment));
+  r.setCamera(camera);
+  return {};
+}
+
+}  // namespace penumbra

@@ -1,0 +1,93 @@
+// RenderJob, the application layer every program loads scenes through: settings overrides,
+// camera choice, the default-environment rule and the memory budget, with one-line errors.
+#include <gtest/gtest.h>
+
+#include "penumbra/render_job.h"
+#include "test_support.h"
+
+namespace penumbra {
+namespace {
+
+std::string asset(const std::string& rel) {
+  return test::sourceDir() + "/assets/" + rel;
+}
+
+// Mean radiance of an environment (its first SH coefficient times Y00).
+float meanRadiance(const PackedEnvironment& env) {
+  const glm::vec3 m = env.sh.c[0] * 0.282095f;
+  return (m.r + m.g + m.b) / 3.0f;
+}
+
+TEST(RenderJobTest, SceneFileSettingsThenOverrides) {
+  JobRequest req;
+  req.scenePath = asset("cornell_box/cornell_box.json");
+  req.settings = {{"frames", "16"}, {"width", "64"}, {"height", "48"}, {"indirectClamp", "2"}};
+  auto job = RenderJob::load(req);
+  ASSERT_TRUE(job.ok()) << job.message();
+  EXPECT_EQ(job->settings.progressive.frames, 16);
+  EXPECT_EQ(job->settings.width, 64);
+  EXPECT_FLOAT_EQ(job->settings.progressive.indirectClamp, 2.0f);
+  EXPECT_FLOAT_EQ(job->settings.progressive.occlusionDistance, 0.3f);  // from the scene file
+  EXPECT_EQ(job->camera.name, "cornell");
+  EXPECT_EQ(job->environmentName, "uniform(0, 0, 0)");
+}
+
+TEST(RenderJobTest, DefaultEnvironmentFollowsTheLights) {
+  // A bare glTF: the Cornell box has its own light, so the world is black; the dense model has
+  // none, so it gets the studio.
+  JobRequest lit;
+  lit.scenePath = asset("cornell_box/cornell_box.gltf");
+  auto withLights = RenderJob::load(lit);
+  ASSERT_TRUE(withLights.ok()) << withLights.message();
+  EXPECT_EQ(withLights->environmentName, "none");
+  EXPECT_EQ(meanRadiance(withLights->environment), 0.0f);
+  JobRequest unlit;
+  unlit.scenePath = asset("dense/dense.glb");
+  auto studio = RenderJob::load(unlit);
+  ASSERT_TRUE(studio.ok()) << studio.message();
+  ASSERT_TRUE(studio->scene.lights.empty());
+  EXPECT_EQ(studio->environmentName, "studio");
+  EXPECT_GT(meanRadiance(studio->environment), 0.2f);
+  EXPECT_LT(meanRadiance(studio->environment), 1.0f);
+  // The request wins over the rule and over the scene file.
+  lit.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::Studio};
+  auto forced = RenderJob::load(lit);
+  ASSERT_TRUE(forced.ok());
+  EXPECT_EQ(forced->environmentName, "studio");
+  JobRequest file;
+  file.scenePath = asset("cornell_box/cornell_box.json");
+  file.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::Uniform, .radiance = {1, 1, 1}};
+  auto uniform = RenderJob::load(file);
+  ASSERT_TRUE(uniform.ok());
+  EXPECT_NEAR(meanRadiance(uniform->environment), 1.0f, 1e-3f);
+}
+
+TEST(RenderJobTest, BadRequestsAreOneLineErrors) {
+  struct Case {
+    JobRequest req;
+    const char* expect;
+  } cases[] = {
+      {{.scenePath = asset("cornell_box/cornell_box.json"), .camera = "nope"}, "nope"},
+      {{.scenePath = asset("cornell_box/cornell_box.json"), .settings = {{"frames", "0"}}},
+       "frames"},
+      {{.scenePath = asset("cornell_box/cornell_box.json"), .settings = {{"framez", "3"}}},
+       "unknown setting 'framez'"},
+      {{.scenePath = asset("cornell_box/cornell_box.json"),
+        .settings = {{"width", "16384"}, {"height", "16384"}},
+        .memoryBudgetBytes = int64_t{64} << 20},
+       "over the memory budget of 64 MB"},
+      {{.scenePath = asset("cornell_box/cornell_box.json"),
+        .environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::File, .path = "/no/sky.hdr"}},
+       "/no/sky.hdr"},
+      {{.scenePath = "/no/such/scene.json"}, "/no/such/scene.json"},
+  };
+  for (const auto& c : cases) {
+    auto job = RenderJob::load(c.req);
+    ASSERT_FALSE(job.ok()) << c.expect;
+    EXPECT_NE(job.message().find(c.expect), std::string::npos) << job.message();
+    EXPECT_EQ(job.message().find('\n'), std::string::npos) << job.message();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
