@@ -20,6 +20,7 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/PenumbraConfigVersi
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/PenumbraConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/PenumbraConfigVersion.cmake
         DESTINATION ${PENUMBRA_CMAKE_DIR})
+file(RELATIVE_PATH PENUMBRA_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/penumbra.pc.in
                ${CMAKE_CURRENT_BINARY_DIR}/penumbra.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/penumbra.pc

@@ -17,8 +17,9 @@
 #include "chunks/occlusion.glsl"
 #endif
 
-const int MAX_AREA = 8;
-const int MAX_PUNCTUAL = 8;
+// Limits shared with the C++ side (passes/limits.h), given as generated defines.
+const int MAX_AREA = PN_MAX_SHADOW_MAPS;  // area-light samples per pass: one shadow map each
+const int MAX_PUNCTUAL = PN_MAX_PUNCTUAL_LIGHTS;
 
 uniform vec4 uViewOrigin;  // (camera position, 1), or (direction to the viewer, 0) if orthographic
 uniform float uEnvWeight;  // weight of the environment term in this frame (0 or 1)

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "penumbra/environment.h"
-#include "render/camera_math.h"
+#include "passes/camera_math.h"
 #include "render_fixture.h"
 
 namespace penumbra::test {

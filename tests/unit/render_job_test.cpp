@@ -1,5 +1,7 @@
 // RenderJob, the application layer every program loads scenes through: settings overrides,
 // camera choice, the default-environment rule and the memory budget, with one-line errors.
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "penumbra/render_job.h"
@@ -7,6 +9,12 @@
 
 namespace penumbra {
 namespace {
+
+Status writeTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  return out ? Status{} : makeError("cannot write " + path);
+}
 
 std::string asset(const std::string& rel) {
   return test::sourceDir() + "/assets/" + rel;
@@ -60,6 +68,32 @@ TEST(RenderJobTest, DefaultEnvironmentFollowsTheLights) {
   auto uniform = RenderJob::load(file);
   ASSERT_TRUE(uniform.ok());
   EXPECT_NEAR(meanRadiance(uniform->environment), 1.0f, 1e-3f);
+}
+
+TEST(RenderJobTest, WarnsWhenPunctualLightsExceedTheLimit) {
+  std::string lights, nodes;
+  const int count = kMaxPunctualLights + 2;
+  for (int i = 0; i < count; ++i) {
+    lights += std::string(i ? "," : "") + R"({"type": "point", "intensity": 1})";
+    nodes += std::string(i ? "," : "") + R"({"extensions": {"KHR_lights_punctual": {"light": )" +
+             std::to_string(i) + "}}}";
+  }
+  std::string scene = "[";
+  for (int i = 0; i < count; ++i) scene += std::string(i ? "," : "") + std::to_string(i);
+  const std::string gltf =
+      R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+          "extensions": {"KHR_lights_punctual": {"lights": [)" +
+      lights + "]}}, \"nodes\": [" + nodes + "], \"scenes\": [{\"nodes\": " + scene +
+      "]}], \"scene\": 0}";
+  const std::string path = test::outputDir() + "/many_punctual.gltf";
+  ASSERT_TRUE(writeTextFile(path, gltf).ok());
+  auto job = RenderJob::load({.scenePath = path});
+  ASSERT_TRUE(job.ok()) << job.message();
+  bool warned = false;
+  for (const auto& w : job->warnings) {
+    warned = warned || w.find(std::to_string(count) + " punctual lights") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << "no warning about " << count << " punctual lights";
 }
 
 TEST(RenderJobTest, BadRequestsAreOneLineErrors) {

@@ -239,6 +239,72 @@ test('a corrupt file, a failed fetch and a missing extension are reported; rende
   });
 });
 
+test('every setting of the schema is set and read back through the JS API; the .d.ts lists them all', { timeout: TEST_MS }, async () => {
+  // A page of its own: the shared page's later tests expect it idle and converged.
+  const own = await openPage(QUERY);
+  await step('settings', own, async () => {
+    const results = await own.evaluate(async () => {
+      const v = window.penumbraPage.viewer;
+      const schema = v.settingsSchema;
+      const before = v.settings;
+      const rows = [];
+      for (const e of schema) {
+        let value;
+        if (e.type === 'bool') {
+          value = !before[e.key];
+        } else if (e.type === 'toneMapper') {
+          value = before[e.key] === 'aces' ? 'reinhard' : 'aces';
+        } else if (e.key === 'shadowMapSize') {
+          value = before[e.key] === 512 ? 256 : 512;
+        } else {
+          const pick = (f) => {
+            const x = e.min + (e.max - e.min) * f;
+            return e.type === 'integer' ? Math.round(x) : x;
+          };
+          value = pick(0.25) === before[e.key] ? pick(0.75) : pick(0.25);
+        }
+        let error = null;
+        try {
+          await v.setSettings({ [e.key]: value });
+        } catch (err) {
+          error = err.message;
+        }
+        rows.push({ key: e.key, value, got: v.settings[e.key], error });
+      }
+      let unknown = null;
+      try {
+        await v.setSettings({ indirectClmp: 1 });
+      } catch (err) {
+        unknown = err.message;
+      }
+      await v.setSettings(before);
+      const dts = await (await fetch('lib/penumbra.d.ts')).text();
+      return { rows, unknown, restored: v.settings, before, dts, keys: schema.map((e) => e.key) };
+    });
+    assert.deepEqual((await pageState(own)).errors, [], 'no errors after the settings');
+    assert.ok(results.rows.length >= 16, `schema has ${results.rows.length} viewer settings`);
+    assert.ok(results.keys.includes('indirectClamp'), 'indirectClamp is a viewer setting');
+    for (const r of results.rows) {
+      assert.equal(r.error, null, `${r.key} = ${r.value}: ${r.error}`);
+      if (typeof r.value === 'number') {
+        assert.ok(Math.abs(r.got - r.value) <= 1e-6 * Math.max(1, Math.abs(r.value)),
+                  `${r.key}: set ${r.value}, read ${r.got}`);
+      } else {
+        assert.equal(r.got, r.value, `${r.key}: set ${r.value}, read ${r.got}`);
+      }
+    }
+    assert.match(results.unknown ?? '', /unknown setting 'indirectClmp'/);
+    assert.deepEqual(results.restored, results.before, 'settings restored');
+    // The typed API lists exactly the schema's keys.
+    const body = results.dts.match(/export interface Settings \{([\s\S]*?)\n\}/);
+    assert.ok(body, 'penumbra.d.ts has an interface Settings');
+    const typed = [...body[1].matchAll(/^\s+(\w+)\?:/gm)].map((m) => m[1]).sort();
+    assert.deepEqual(typed, [...results.keys].sort(),
+                     'penumbra.d.ts Settings and the settings schema disagree');
+  });
+  await own.close();
+});
+
 test('WebGL context loss is shown, and restore rebuilds everything and converges again', { timeout: TEST_MS }, async () => {
   await step('context-loss', page, async () => {
     const before = await pageState(page);

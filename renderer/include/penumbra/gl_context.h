@@ -18,6 +18,7 @@ enum class GlBackend {
   EglDevice,       // EGL_EXT_platform_device (e.g. EGL_MESA_device_software or a GPU)
   OSMesa,          // Mesa's off-screen desktop GL 4.5 core (runs our ES 3.00 shaders)
   WebGL2,          // Emscripten, a canvas in the page
+  Host,            // a context the host application created and made current (adoptCurrent)
 };
 
 const char* backendName(GlBackend backend);
@@ -39,6 +40,16 @@ class GlContext {
   // Creates a context and makes it current, with the GL entry points loaded. When no backend
   // works, the error says in one line which backends were tried and why each failed.
   static Result<std::unique_ptr<GlContext>> create(const ContextOptions& options = {});
+
+  // For a host that draws Penumbra into its own framebuffer: wraps the OpenGL ES 3.0 (or
+  // desktop GL 3.3+ with ES 3 compatibility) context the host made current, loading the entry
+  // points through `getProcAddress` (eglGetProcAddress when null). The wrapper does not own,
+  // make current or destroy the host's context. Create the Renderer with
+  // RendererOptions::preserveHostState so it leaves the host's GL state as it found it.
+  // Native builds only.
+  using GetProcAddress = void (*(*)(const char*))();
+  static Result<std::unique_ptr<GlContext>> adoptCurrent(GetProcAddress getProcAddress = nullptr,
+                                                         bool desktopGl = false);
 
   virtual GlBackend backend() const = 0;
   // "EGL surfaceless: OpenGL ES 3.0 Mesa 22.3.6 (llvmpipe ...)" and the like.

@@ -6,6 +6,7 @@
 // Needs a current GL context (GlContext::create) for its whole life.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -24,6 +25,20 @@ struct RendererOptions {
   // Waits for the GPU after every pass and records its time in FrameStats (benchmarks only:
   // it serialises CPU and GPU work).
   bool profilePasses = false;
+  // For a host's context (GlContext::adoptCurrent): every call that touches GL saves the GL
+  // state it changes and restores it before returning (docs/embedding.md lists what is kept).
+  bool preserveHostState = false;
+};
+
+// Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob
+// warns).
+inline constexpr int kMaxPunctualLights = 8;
+
+// Where present() draws the displayed image: a framebuffer (0 = the default one, or a host's
+// framebuffer object by its GL name) and a viewport in it.
+struct PresentTarget {
+  uint32_t framebuffer = 0;
+  int x = 0, y = 0, width = 0, height = 0;
 };
 
 // What the last frame did, for tests, benchmarks and progress displays.
@@ -72,6 +87,8 @@ class Renderer {
   // viewport, scaling the accumulated image when the render resolution differs (nearest).
   // Leaves framebuffer 0 bound. The web viewer calls it once per animation frame.
   Status present(int canvasWidth, int canvasHeight);
+  // The same into any framebuffer and viewport (a host's render target).
+  Status present(const PresentTarget& target);
 
   // The accumulation format in use and the capability report, for logs.
   std::string capabilityReport() const;

@@ -1,5 +1,6 @@
 #include "penumbra/render_job.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace penumbra {
@@ -89,6 +90,12 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   if (!scene) return scene.error();
   job.scene = std::move(*scene);
   job.warnings.insert(job.warnings.end(), job.scene.warnings.begin(), job.scene.warnings.end());
+  const auto punctual = std::count_if(job.scene.lights.begin(), job.scene.lights.end(),
+                                      [](const Light& l) { return !l.isArea(); });
+  if (punctual > kMaxPunctualLights) {
+    job.warnings.push_back(std::to_string(punctual) + " punctual lights: only the first " +
+                           std::to_string(kMaxPunctualLights) + " are shaded");
+  }
 
   const std::string& cameraName = !request.camera.empty() ? request.camera : job.sceneFile.camera;
   if (!cameraName.empty()) {

@@ -16,6 +16,10 @@ const char* errorName(GLenum error) {
       return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY:
       return "GL_OUT_OF_MEMORY";
+    case 0x0507:  // GL_CONTEXT_LOST (KHR_robustness, ES 3.2)
+      return "GL_CONTEXT_LOST";
+    case 0x9242:  // CONTEXT_LOST_WEBGL
+      return "CONTEXT_LOST_WEBGL (the WebGL context was lost)";
     default:
       return "unknown GL error";
   }

@@ -240,6 +240,9 @@ void Framebuffer::bind() const {
 void Framebuffer::bindDefault() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
+void Framebuffer::bindExternal(GLuint id) {
+  glBindFramebuffer(GL_FRAMEBUFFER, id);
+}
 
 std::vector<float> Framebuffer::readRgbaFloat(int index, int x, int y, int width,
                                               int height) const {

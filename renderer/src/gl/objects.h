@@ -91,6 +91,8 @@ class Framebuffer {
   Status checkComplete() const;
   void bind() const;
   static void bindDefault();
+  // Binds a framebuffer Penumbra does not own (a host's render target), by its GL name.
+  static void bindExternal(GLuint id);
 
   // Reads RGBA float pixels of colour attachment `index` (row 0 = bottom, GL order).
   std::vector<float> readRgbaFloat(int index, int x, int y, int width, int height) const;

@@ -235,7 +235,9 @@ Result<ShaderSource> ShaderLibrary::compose(std::string_view file, ShaderStage s
   std::string& out = src.text;
   out = "#version 300 es\n";
   out += stage == ShaderStage::Vertex ? "#define PN_VERTEX 1\n" : "#define PN_FRAGMENT 1\n";
-  for (const auto& [k, v] : defines) out += "#define " + k + " " + (v.empty() ? "1" : v) + "\n";
+  for (const Defines* list : {&common_, &defines}) {
+    for (const auto& [k, v] : *list) out += "#define " + k + " " + (v.empty() ? "1" : v) + "\n";
+  }
   std::vector<std::string> stack;
   if (files_.count(kPrelude)) PN_TRY(expand(kPrelude, out, src.files, stack));
   PN_TRY(expand(file, out, src.files, stack));

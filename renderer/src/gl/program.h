@@ -71,6 +71,10 @@ class ShaderLibrary {
   // Explicit files (tests use this to inject a broken shader).
   explicit ShaderLibrary(std::map<std::string, std::string, std::less<>> files);
 
+  // Defines put in every program before its own (limits shared with the C++ side). Set them
+  // before the first program is built.
+  void setCommonDefines(Defines defines) { common_ = std::move(defines); }
+
   Result<ShaderSource> compose(std::string_view file, ShaderStage stage,
                                const Defines& defines) const;
   // The program for (vertex file, fragment file, defines), built on first use and cached.
@@ -84,6 +88,7 @@ class ShaderLibrary {
                 std::vector<std::string>& stack) const;
   std::map<std::string, std::string, std::less<>> files_;
   std::map<std::string, std::unique_ptr<Program>, std::less<>> cache_;
+  Defines common_;
 };
 
 }  // namespace penumbra::gl

@@ -2,8 +2,8 @@
 
 namespace penumbra::passes {
 
-Result<FullscreenPass> FullscreenPass::create(gl::ShaderLibrary& library,
-                                              const char* fragmentFile, bool farPlane) {
+Result<FullscreenPass> FullscreenPass::create(gl::ShaderLibrary& library, const char* fragmentFile,
+                                              bool farPlane) {
   auto program =
       library.program("fullscreen.vert", fragmentFile, {{"PN_FAR_PLANE", farPlane ? "1" : "0"}});
   if (!program) return program.error();

@@ -16,7 +16,9 @@
 namespace penumbra {
 namespace {
 
-bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
+bool isPowerOfTwo(int v) {
+  return v > 0 && (v & (v - 1)) == 0;
+}
 
 }  // namespace
 
@@ -52,15 +54,14 @@ Result<PackedEnvironment> prefilterGpu(const Image& panorama,
       rgba[i * 4 + c] = panorama.pixels[i * panorama.channels + std::min(c, panorama.channels - 1)];
     }
   }
-  auto pano = gl::Texture2D::create(
-      {.width = panorama.width,
-       .height = panorama.height,
-       .format = format,
-       .levels = gl::fullMipCount(panorama.width, panorama.height),
-       .sampler = {.minFilter = gl::Filter::LinearMipLinear,
-                   .magFilter = gl::Filter::Linear,
-                   .wrapS = gl::Wrap::Repeat,
-                   .wrapT = gl::Wrap::ClampToEdge}});
+  auto pano = gl::Texture2D::create({.width = panorama.width,
+                                     .height = panorama.height,
+                                     .format = format,
+                                     .levels = gl::fullMipCount(panorama.width, panorama.height),
+                                     .sampler = {.minFilter = gl::Filter::LinearMipLinear,
+                                                 .magFilter = gl::Filter::Linear,
+                                                 .wrapS = gl::Wrap::Repeat,
+                                                 .wrapT = gl::Wrap::ClampToEdge}});
   if (!pano) return makeError("panorama texture: " + pano.message());
   pano->upload(0, rgba.data(), gl::DataType::Float);
   pano->generateMipmaps();
@@ -68,11 +69,11 @@ Result<PackedEnvironment> prefilterGpu(const Image& panorama,
   const int size = options.faceSize;
   const int mips = ibl::mipCountFor(size, options.minFaceSize);
   const int sourceLevels = gl::fullMipCount(size, size);
-  auto source = gl::TextureCube::create({.width = size,
-                                         .format = format,
-                                         .levels = sourceLevels,
-                                         .sampler = {.minFilter = gl::Filter::LinearMipLinear,
-                                                     .magFilter = gl::Filter::Linear}});
+  auto source = gl::TextureCube::create(
+      {.width = size,
+       .format = format,
+       .levels = sourceLevels,
+       .sampler = {.minFilter = gl::Filter::LinearMipLinear, .magFilter = gl::Filter::Linear}});
   if (!source) return makeError("source cube: " + source.message());
   auto target = gl::TextureCube::create({.width = size, .format = format, .levels = mips});
   if (!target) return makeError("prefiltered cube: " + target.message());

@@ -13,10 +13,9 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "gpu/gpu_scene.h"
+#include "passes/limits.h"
 
 namespace penumbra::passes {
-
-inline constexpr int kMaxShadowMaps = 4;
 
 struct ShadowView {
   glm::mat4 matrix{1.0f};  // world -> shadow texture space [0, 1]^3

@@ -19,5 +19,6 @@ void applyCommonState(bool desktopGl);
 Result<std::unique_ptr<GlContext>> createEglContext(bool devicePlatform);
 Result<std::unique_ptr<GlContext>> createOsMesaContext();
 Result<std::unique_ptr<GlContext>> createWebGlContext(const ContextOptions& options);
+Result<std::unique_ptr<GlContext>> adoptHostContext(GetProcFn getProc, bool desktopGl);
 
 }  // namespace penumbra::platform

@@ -22,6 +22,8 @@ const char* backendName(GlBackend backend) {
       return "osmesa";
     case GlBackend::WebGL2:
       return "webgl2";
+    case GlBackend::Host:
+      return "host";
   }
   return "unknown";
 }
@@ -51,6 +53,8 @@ Result<std::unique_ptr<GlContext>> createOne(GlBackend backend, const ContextOpt
       return platform::createOsMesaContext();
     case GlBackend::WebGL2:
       return platform::createWebGlContext(options);
+    case GlBackend::Host:
+      return makeError("the host backend wraps an existing context: use GlContext::adoptCurrent");
     case GlBackend::Auto:
       break;
   }

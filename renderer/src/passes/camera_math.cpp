@@ -1,4 +1,4 @@
-#include "render/camera_math.h"
+#include "passes/camera_math.h"
 
 #include <algorithm>
 

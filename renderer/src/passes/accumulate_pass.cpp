@@ -1,0 +1,28 @@
+#include "passes/accumulate_pass.h"
+
+#include <cstddef>
+
+namespace penumbra::passes {
+
+Result<AccumulatePass> AccumulatePass::create(gl::ShaderLibrary& library) {
+  auto pass = FullscreenPass::create(library, "accumulate.frag");
+  if (!pass) return pass.error();
+  return AccumulatePass(std::move(*pass));
+}
+
+void AccumulatePass::run(RenderTargets& targets, int n) const {
+  const auto prev = static_cast<std::size_t>(targets.current);
+  const auto next = static_cast<std::size_t>(1 - targets.current);
+  targets.accumulation[next].framebuffer.bind();
+  gl::setViewport(0, 0, targets.width, targets.height);
+  const gl::Program& p = pass_.begin();
+  targets.accumulation[prev].color.bind(0);
+  targets.frame.color.bind(1);
+  p.set("uPrevious", 0);
+  p.set("uCurrent", 1);
+  p.set("uWeight", 1.0f / static_cast<float>(n));
+  pass_.draw();
+  targets.current = static_cast<int>(next);
+}
+
+}  // namespace penumbra::passes

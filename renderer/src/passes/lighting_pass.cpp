@@ -1,0 +1,173 @@
+#include "passes/lighting_pass.h"
+
+#include <algorithm>
+#include <span>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "passes/limits.h"
+#include "passes/scene_draw.h"
+
+namespace penumbra::passes {
+
+Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
+  LightingPass pass;
+  // Every variant up front: no frame pays for a shader compile.
+  for (int v = 0; v < 8; ++v) {
+    auto p = library.program("mesh.vert", "lighting.frag",
+                             {{"PN_OCCLUSION", (v & 1) ? "1" : "0"},
+                              {"PN_AREA", (v & 2) ? "1" : "0"},
+                              {"PN_PUNCTUAL", (v & 4) ? "1" : "0"}});
+    if (!p) return p.error();
+    pass.variants_[v] = *p;
+  }
+  auto bg = FullscreenPass::create(library, "background.frag", /*farPlane=*/true);
+  if (!bg) return bg.error();
+  pass.background_.emplace(std::move(*bg));
+  auto d = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
+  if (!d) return d.error();
+  const uint8_t black[4] = {0, 0, 0, 0};
+  d->upload(0, black, gl::DataType::UInt8);
+  pass.dummy_ = std::move(*d);
+  return pass;
+}
+
+void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
+                               const glm::mat3& envRotation) {
+  const RenderSettings& s = *b.settings;
+  const CameraMatrices& cm = *b.camera;
+  p.use();
+  p.set("uViewProj", cm.projection * cm.view);
+  p.set("uViewOrigin", cm.viewOrigin);
+  b.environment->bind(p, kUnitEnvCube, kUnitLut, s.environmentIntensity, envRotation);
+  // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
+  p.set("uIndirectEnabled", s.progressive.screenSpaceIndirect ? 1 : 0);
+  p.set("uIndirectClamp",
+        s.progressive.indirectClamp > 0.0f ? s.progressive.indirectClamp : 3.0e38f);
+  (b.occlusion ? b.targets->prepass.color : dummy_).bind(kUnitPrepass);
+  b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
+  p.set("uPrepass", kUnitPrepass);
+  p.set("uAccumulated", kUnitAccumulated);
+  p.set("uOcclusionDistance", s.progressive.occlusionDistance);
+  p.set("uView", cm.view);
+  p.set("uProjection", cm.projection);
+  p.set("uViewportSize", glm::vec2(b.targets->width, b.targets->height));
+  p.set("uSequence", b.sequence);
+  b.shadows->bind(p, kUnitShadow);
+  p.set("uEnvWeight", b.first ? 1.0f : 0.0f);
+  p.set("uCoverageFrame", b.coverageFrame);
+  p.set("uCoverageStream", 0);
+
+  // This batch's area-light samples.
+  std::vector<glm::vec3> pos, dir, right, up, radiance;
+  std::vector<glm::vec4> shape;
+  std::vector<int> lightIds;
+  std::vector<glm::mat4> shadowMatrices(kMaxShadowMaps, glm::mat4(1.0f));
+  std::vector<glm::vec4> shadowParams(kMaxShadowMaps, glm::vec4(0.0f));
+  for (size_t i = 0; i < b.area.size(); ++i) {
+    const AreaSampleDraw& a = b.area[i];
+    const Light& l = *a.light;
+    lightIds.push_back(a.lightIndex);
+    pos.push_back(l.position);
+    dir.push_back(l.direction);
+    right.push_back(l.right);
+    up.push_back(l.up);
+    shape.emplace_back(l.width, l.height, l.type == LightType::Disk ? 1.0f : 0.0f,
+                       a.shadowed ? static_cast<float>(i) : -1.0f);
+    radiance.push_back(l.color * l.intensity * a.weight);
+    if (a.shadowed) {
+      shadowMatrices[i] = a.view.matrix;
+      shadowParams[i] = a.view.params;
+    }
+  }
+  p.set("uAreaCount", static_cast<int>(b.area.size()));
+  p.set("uAreaLight", std::span<const int>(lightIds));
+  p.set("uAreaPos", std::span<const glm::vec3>(pos));
+  p.set("uAreaDir", std::span<const glm::vec3>(dir));
+  p.set("uAreaRight", std::span<const glm::vec3>(right));
+  p.set("uAreaUp", std::span<const glm::vec3>(up));
+  p.set("uAreaShape", std::span<const glm::vec4>(shape));
+  p.set("uAreaRadiance", std::span<const glm::vec3>(radiance));
+  p.set("uShadowMatrix", std::span<const glm::mat4>(shadowMatrices));
+  p.set("uShadowParams", std::span<const glm::vec4>(shadowParams));
+
+  // Punctual lights (first batch only; past kMaxPunctualLights they are not shaded).
+  std::vector<glm::vec4> ppos, pdir;
+  std::vector<glm::vec3> pcol;
+  std::vector<glm::vec2> cone;
+  for (const PunctualDraw& pd : b.punctual) {
+    if (static_cast<int>(ppos.size()) >= kMaxPunctualLights) break;
+    const Light& l = *pd.light;
+    const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
+    ppos.emplace_back(l.position, type);
+    pdir.emplace_back(l.direction, l.range);
+    pcol.push_back(l.color * l.intensity * pd.weight);
+    const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
+    const float scale = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
+    cone.emplace_back(scale, -cosOuter * scale);
+  }
+  p.set("uPunctualCount", static_cast<int>(ppos.size()));
+  p.set("uPunctualPos", std::span<const glm::vec4>(ppos));
+  p.set("uPunctualDir", std::span<const glm::vec4>(pdir));
+  p.set("uPunctualColor", std::span<const glm::vec3>(pcol));
+  p.set("uPunctualCone", std::span<const glm::vec2>(cone));
+}
+
+// The environment behind the scene: drawn after the opaque geometry at the far plane, so only
+// uncovered pixels pay for it.
+void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
+  if (!b.settings->showBackground) return;
+  const gl::Program& bg = background_->begin(/*depthTest=*/true);
+  b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
+  bg.set("uInvViewProj", glm::inverse(b.camera->projection * b.camera->view));
+  bg.set("uBackgroundBlur", b.settings->backgroundBlur);
+  background_->draw();
+}
+
+Status LightingPass::draw(const LightingBatch& b) {
+  // The environment turns by +angle about Y: look up directions turned by -angle.
+  const glm::mat3 envRotation(glm::rotate(
+      glm::mat4(1.0f), glm::radians(-b.settings->environmentRotation), glm::vec3(0, 1, 0)));
+  b.targets->frame.framebuffer.bind();
+  gl::setViewport(0, 0, b.targets->width, b.targets->height);
+  if (b.first) {
+    gl::apply({});
+    gl::clearBufferFloat(0, 0, 0, 0, 1);
+    gl::clearDepth(1.0f);
+  }
+  if (!b.scene) {
+    if (b.first) drawBackground(b, envRotation);
+    return {};
+  }
+  const gl::Program& p = *variant(b.occlusion, !b.area.empty(), !b.punctual.empty());
+  setUniforms(p, b, envRotation);
+  gl::PipelineState opaque;
+  if (!b.first) {
+    opaque.depthTest = gl::DepthTest::LessEqual;
+    opaque.depthWrite = false;
+    opaque.blend = gl::Blend::Additive;
+  }
+  b.targets->frame.framebuffer.bind();
+  drawItems(p, *b.scene, b.scene->opaque(), true, opaque);
+  // Stochastic coverage: BLEND surfaces are drawn like opaque ones, minus the fragments this
+  // frame does not keep, in every batch (the same decisions each time).
+  if (b.coverageFrame >= 0) drawItems(p, *b.scene, b.scene->blended(), true, opaque);
+  if (b.first) drawBackground(b, envRotation);
+  if (b.first && b.coverageFrame < 0 && !b.scene->blended().empty()) {
+    const CameraMatrices& cm = *b.camera;
+    std::vector<DrawItem> sorted = b.scene->blended();
+    std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& x, const DrawItem& y) {
+      // Back to front: by distance from the eye, or along the parallel rays (orthographic).
+      auto far = [&](const glm::vec3& c) {
+        return cm.viewOrigin.w > 0.5f ? glm::distance(c, cm.position)
+                                      : -glm::dot(c, glm::vec3(cm.viewOrigin));
+      };
+      return far(x.center) > far(y.center);
+    });
+    p.use();  // the background pass left its own program bound
+    drawItems(p, *b.scene, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
+  }
+  return {};
+}
+
+}  // namespace penumbra::passes

@@ -1,0 +1,73 @@
+// LightingPass: the forward shading of one intermediate frame (lighting.frag) and the
+// environment behind the scene (background.frag). One draw of the scene per batch of up to
+// kMaxShadowMaps area-light samples: the first batch adds the environment (with this frame's
+// occlusion rays), punctual lights, emission and the background, and alpha-blends BLEND
+// surfaces in frame 1; later batches add their light on top. Program variants (PN_OCCLUSION,
+// PN_AREA, PN_PUNCTUAL) keep frame 1 a plain forward pass; all are compiled up front.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "gpu/gpu_environment.h"
+#include "gpu/gpu_scene.h"
+#include "passes/camera_math.h"
+#include "passes/fullscreen_pass.h"
+#include "passes/shadow_pass.h"
+#include "passes/targets.h"
+#include "penumbra/frame_plan.h"
+#include "penumbra/settings.h"
+
+namespace penumbra::passes {
+
+// One area-light sample of the batch (sorted by light), with its shadow map if it has one.
+struct AreaSampleDraw {
+  const Light* light = nullptr;
+  int lightIndex = 0;
+  float weight = 1.0f;  // the distributor's m / n_i
+  bool shadowed = false;
+  ShadowView view;  // its map is slot i of the ShadowPass
+};
+
+struct PunctualDraw {
+  const Light* light = nullptr;
+  float weight = 1.0f;
+};
+
+struct LightingBatch {
+  RenderTargets* targets = nullptr;
+  const GpuScene* scene = nullptr;  // may be null: background only
+  const GpuEnvironment* environment = nullptr;
+  const ShadowPass* shadows = nullptr;
+  const RenderSettings* settings = nullptr;
+  const CameraMatrices* camera = nullptr;  // jittered
+  glm::vec2 sequence{0.0f};                // the frame's low-discrepancy point
+  bool first = true;       // clears the frame and adds environment, punctual lights, background
+  bool occlusion = false;  // the prepass is valid: occlusion rays and screen-space indirect light
+  int coverageFrame = -1;  // stochastic coverage index of BLEND surfaces (< 0: alpha-blend)
+  std::vector<AreaSampleDraw> area;
+  std::vector<PunctualDraw> punctual;
+};
+
+class LightingPass {
+ public:
+  static Result<LightingPass> create(gl::ShaderLibrary& library);
+  Status draw(const LightingBatch& batch);
+
+ private:
+  gl::Program* variant(bool occlusion, bool area, bool punctual) const {
+    return variants_[(occlusion ? 1 : 0) | (area ? 2 : 0) | (punctual ? 4 : 0)];
+  }
+  void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
+  void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
+
+  gl::Program* variants_[8] = {};
+  std::optional<FullscreenPass> background_;
+  gl::Texture2D dummy_;  // bound in place of the prepass when there is none
+};
+
+}  // namespace penumbra::passes

@@ -1,0 +1,18 @@
+#include "passes/scene_draw.h"
+
+namespace penumbra::passes {
+
+void drawItems(const gl::Program& program, const GpuScene& scene,
+               const std::vector<DrawItem>& items, bool material, gl::PipelineState state) {
+  for (const DrawItem& item : items) {
+    const Material& m = scene.material(item.material).source;
+    state.cull = m.doubleSided ? gl::Cull::None : gl::Cull::Back;
+    state.frontFaceClockwise = item.mirrored;
+    gl::apply(state);
+    GpuScene::bindTransform(program, item);
+    if (material) scene.bindMaterial(program, item.material);
+    item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+  }
+}
+
+}  // namespace penumbra::passes
