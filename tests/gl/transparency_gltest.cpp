@@ -124,6 +124,18 @@ Image blockMean(const Image& img, int k) {
                       {.maxAbs = 0.025, .meanAbs = 0.008}, name + "_blocks");
 }
 
+// A 0.5 x 0.5 rect light 2 above the origin, facing down.
+Light ceilingLight(float nits) {
+  Light light;
+  light.position = {0, 2, 0};
+  light.direction = {0, -1, 0};
+  light.right = {1, 0, 0};
+  light.up = {0, 0, 1};
+  light.width = light.height = 0.5f;
+  light.intensity = nits;
+  return light;
+}
+
 Camera topDown() {
   return lookAtCamera({0, 4, 0}, {0, 0, 0}, 35.0f);
 }
@@ -141,14 +153,7 @@ TEST_F(TransparencyGLTest, EveryAlphaModeRendersEveryFrame) {
                 rectangle(-0.8f, 0.0f, -0.8f, 0.0f, 0.3f, 0));
   s = withLayer(s, mask, rectangle(0.0f, 0.8f, -0.8f, 0.0f, 0.3f, 0));
   s = withLayer(s, twoSided, rectangle(-0.8f, 0.0f, 0.0f, 0.8f, 0.3f, 0));
-  Light light;
-  light.position = {0, 2, 0};
-  light.direction = {0, -1, 0};
-  light.right = {1, 0, 0};
-  light.up = {0, 0, 1};
-  light.width = light.height = 0.5f;
-  light.intensity = 5.0f;
-  s.lights.push_back(light);
+  s.lights.push_back(ceilingLight(5.0f));
   RenderSettings rs = topDownSettings(8);
   rs.progressive.occlusionDistance = 0.5f;  // the occlusion rays see the coverage too
   rs.progressive.screenSpaceIndirect = true;
@@ -230,14 +235,7 @@ struct ShadowSetup {
   ShadowSetup() {
     scene.materials = {lambert(glm::vec3(0.8f))};
     scene.meshes.push_back(meshOf(rectangle(-2, 2, -2, 2, 0.0f, 0)));
-    Light light;
-    light.position = {0, 2, 0};
-    light.direction = {0, -1, 0};
-    light.right = {1, 0, 0};
-    light.up = {0, 0, 1};
-    light.width = light.height = 0.5f;
-    light.intensity = 40.0f;  // the lit floor reads about 0.6
-    scene.lights.push_back(light);
+    scene.lights.push_back(ceilingLight(40.0f));  // the lit floor reads about 0.6
     settings.width = 96;
     settings.height = 64;
     settings.progressive.shadowMapSize = 512;
