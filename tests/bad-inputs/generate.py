@@ -181,6 +181,9 @@ def pfm(name, w, h, pixel):
 bad = {(1, 1): (nan, 1.0, 1.0), (2, 2): (float("inf"), 1.0, 1.0), (3, 3): (-1.0, 1.0, 1.0)}
 pfm("nan_inf_panorama.pfm", 32, 16, lambda x, y: bad.get((x, y), (1.0, 1.0, 1.0)))
 pfm("panorama_64x32.pfm", 64, 32, lambda x, y: (0.5, 0.5, 0.5))
+# Every texel with exponent byte 255: decodes to about 1e38, finite but no usable radiance.
+write("overflow_panorama.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 32\n" +
+      bytes([200, 200, 200, 255]) * (32 * 16))
 pfm("not_2to1.pfm", 30, 20, lambda x, y: (1.0, 1.0, 1.0))
 write("garbage.hdr", b"#?RADIANCE\nthis is not an image\n")
 # Packed environments derived from a real prefilter output (the fuzz seed, --size 4).

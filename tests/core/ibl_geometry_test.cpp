@@ -168,12 +168,38 @@ TEST(IblGeometryTest, SanitizeClampsAndCounts) {
   image.pixel(1, 0)[1] = -2.0f;
   image.pixel(2, 0)[2] = INFINITY;
   image.pixel(3, 0)[3] = -1.0f;  // alpha is not radiance: left alone
-  EXPECT_EQ(sanitizeRadiance(image), 3);
+  EXPECT_EQ(sanitizeRadiance(image).replaced, 3);
   EXPECT_EQ(image.pixel(0, 0)[0], 0.0f);
   EXPECT_EQ(image.pixel(1, 0)[1], 0.0f);
   EXPECT_EQ(image.pixel(2, 0)[2], 65504.0f);
   EXPECT_EQ(image.pixel(3, 0)[3], -1.0f);
-  EXPECT_EQ(sanitizeRadiance(image), 0);
+  EXPECT_EQ(sanitizeRadiance(image).replaced, 0);
+}
+
+TEST(IblGeometryTest, RadianceVerdictWarnsOrRefuses) {
+  Image some(4, 1, 3, 1.0f);
+  some.pixel(0, 0)[0] = std::nanf("");
+  some.pixel(1, 0)[1] = 1e30f;  // finite but absurd: what an RGBE exponent of 255 decodes to
+  const RadianceReport r = sanitizeRadiance(some);
+  EXPECT_EQ(r.nan, 1);
+  EXPECT_EQ(r.tooBright, 1);
+  EXPECT_EQ(some.pixel(1, 0)[1], kMaxRadiance);
+  auto warning = radianceVerdict(r, "sky.hdr");
+  ASSERT_TRUE(warning.ok());
+  EXPECT_NE(warning->find("sky.hdr: replaced 2 of 4 pixels"), std::string::npos) << *warning;
+  EXPECT_NE(warning->find("1 NaN"), std::string::npos) << *warning;
+  EXPECT_NE(warning->find("1 above 65504"), std::string::npos) << *warning;
+
+  Image none(2, 1, 3, 1e38f);
+  auto refused = radianceVerdict(sanitizeRadiance(none), "overflow.hdr");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("overflow.hdr: no usable radiance"), std::string::npos);
+  EXPECT_EQ(refused.message().find('\n'), std::string::npos);
+
+  Image clean(2, 1, 3, 0.5f);
+  auto quiet = radianceVerdict(sanitizeRadiance(clean), "clean.hdr");
+  ASSERT_TRUE(quiet.ok());
+  EXPECT_TRUE(quiet->empty());
 }
 
 TEST(IblGeometryTest, PreviewPanoramaRoundTrip) {

@@ -14,6 +14,7 @@
 #include <span>
 
 #include "image/rgbe.h"
+#include "penumbra/ibl.h"
 #include "penumbra/image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -25,10 +26,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     penumbra::ReadOptions options;
     options.maxPixels = maxPixels;
     auto image = penumbra::readImageFromMemory(bytes, "fuzz.hdr", options);
-    (void)image;
+    if (image) (void)penumbra::ibl::radianceVerdict(penumbra::ibl::sanitizeRadiance(*image), "f");
   } else {
     auto decoded = penumbra::rgbe::decodeFile(bytes, "fuzz.hdr", maxPixels);
-    (void)decoded;
+    // Then the radiance policy every environment goes through (NaN, Inf, overflow).
+    if (decoded) {
+      (void)penumbra::ibl::radianceVerdict(penumbra::ibl::sanitizeRadiance(decoded->image), "f");
+    }
   }
   return 0;
 }

@@ -185,11 +185,11 @@ int main(int argc, char** argv) {
          std::to_string(panorama->height));
     return 1;
   }
-  if (const int64_t bad = ibl::sanitizeRadiance(*panorama); bad > 0) {
-    std::fprintf(stderr,
-                 "penumbra-prefilter: warning: %lld pixels had NaN, infinite or negative values "
-                 "(clamped: NaN and negative to 0, +Inf to 65504)\n",
-                 static_cast<long long>(bad));
+  if (auto verdict = ibl::radianceVerdict(ibl::sanitizeRadiance(*panorama), input); !verdict) {
+    fail(verdict.message());
+    return 1;
+  } else if (!verdict->empty()) {
+    std::fprintf(stderr, "penumbra-prefilter: warning: %s\n", verdict->c_str());
   }
 
   const auto read = std::chrono::steady_clock::now();

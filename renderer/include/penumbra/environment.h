@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -15,6 +16,8 @@ namespace penumbra {
 struct EnvironmentLoadOptions {
   int faceSize = 128;  // for panoramas prefiltered on load
   int samples = 64;
+  // Receives a warning when radiance had to be replaced (ibl::radianceVerdict); null: dropped.
+  std::vector<std::string>* warnings = nullptr;
 };
 
 // True when the file starts like a packed environment (a Radiance header with PENUMBRA_ENV).

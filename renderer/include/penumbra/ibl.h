@@ -76,9 +76,25 @@ glm::vec3 panoramaDirection(float u, float v);
 // Inverse of panoramaDirection: u in [0, 1), v in [0, 1].
 glm::vec2 panoramaCoord(const glm::vec3& direction);
 
-// Replaces NaN, infinite and negative values of the colour channels in place (NaN and negative
-// values become 0, +Inf becomes 65504) and returns how many pixels had one.
-int64_t sanitizeRadiance(Image& image);
+// The largest radiance Penumbra keeps: the largest half float, since weak devices accumulate
+// and sample in RGBA16F. Brighter values in a file are clamped to it (the sun of a real HDRI
+// stays far below).
+inline constexpr float kMaxRadiance = 65504.0f;
+
+// What sanitizeRadiance found: pixels with at least one colour value of each kind.
+struct RadianceReport {
+  int64_t pixels = 0;
+  int64_t nan = 0, infinite = 0, negative = 0, tooBright = 0;
+  int64_t replaced = 0;  // pixels with any of them
+};
+
+// Replaces NaN and negative colour values with 0, infinite ones and values above kMaxRadiance
+// with kMaxRadiance, in place, and counts them.
+RadianceReport sanitizeRadiance(Image& image);
+// The policy for radiance read from a file, in one place: an error when no pixel of `name` was
+// usable as read (every one had a value replaced), otherwise a one-line warning that names the
+// file and what was replaced, or "" when nothing was.
+Result<std::string> radianceVerdict(const RadianceReport& report, const std::string& name);
 
 // ---- Cube map --------------------------------------------------------------------------------
 
@@ -171,7 +187,7 @@ struct PrefilteredEnvironment {
 };
 
 // The whole CPU pipeline: sanitised panorama -> cube (mip 0) -> prefiltered mips, and SH.
-// The panorama must be free of NaN/Inf/negative values (see sanitizeRadiance).
+// The panorama must be free of NaN/Inf/negative/too bright values (see sanitizeRadiance).
 Result<PrefilteredEnvironment> prefilterCpu(const Image& panorama, const PrefilterOptions& options);
 
 // ---- Spherical harmonics ---------------------------------------------------------------------

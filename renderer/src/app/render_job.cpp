@@ -109,7 +109,9 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   }
 
   const EnvironmentSpec spec = request.environment.value_or(job.sceneFile.environment);
-  auto env = resolveEnvironment(spec, job.scene, request.panorama, &job.environmentName);
+  EnvironmentLoadOptions panorama = request.panorama;
+  panorama.warnings = &job.warnings;
+  auto env = resolveEnvironment(spec, job.scene, panorama, &job.environmentName);
   if (!env) return env.error();
   job.environment = std::move(*env);
   return job;

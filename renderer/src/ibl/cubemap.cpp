@@ -200,26 +200,57 @@ glm::vec2 panoramaCoord(const glm::vec3& d) {
   return {u, v};
 }
 
-int64_t sanitizeRadiance(Image& image) {
+RadianceReport sanitizeRadiance(Image& image) {
   const int c = image.channels;
   const int colour = c >= 3 ? 3 : 1;
-  int64_t bad = 0;
+  RadianceReport r;
   const size_t n = static_cast<size_t>(image.width) * image.height;
+  r.pixels = static_cast<int64_t>(n);
   for (size_t i = 0; i < n; ++i) {
-    bool fixed = false;
+    bool isNan = false, isInf = false, isNegative = false, isBright = false;
     for (int k = 0; k < colour; ++k) {
       float& v = image.pixels[i * c + k];
-      if (std::isnan(v) || v < 0.0f) {
+      if (std::isnan(v)) {
         v = 0.0f;
-        fixed = true;
+        isNan = true;
+      } else if (v < 0.0f) {
+        v = 0.0f;
+        isNegative = true;
       } else if (std::isinf(v)) {
-        v = 65504.0f;
-        fixed = true;
+        v = kMaxRadiance;
+        isInf = true;
+      } else if (v > kMaxRadiance) {
+        v = kMaxRadiance;
+        isBright = true;
       }
     }
-    bad += fixed ? 1 : 0;
+    r.nan += isNan;
+    r.infinite += isInf;
+    r.negative += isNegative;
+    r.tooBright += isBright;
+    r.replaced += isNan || isInf || isNegative || isBright;
   }
-  return bad;
+  return r;
+}
+
+Result<std::string> radianceVerdict(const RadianceReport& r, const std::string& name) {
+  if (r.replaced == 0) return std::string();
+  std::string kinds;
+  auto add = [&kinds](int64_t count, const char* what) {
+    if (count == 0) return;
+    if (!kinds.empty()) kinds += ", ";
+    kinds += std::to_string(count) + " " + what;
+  };
+  add(r.nan, "NaN");
+  add(r.infinite, "infinite");
+  add(r.negative, "negative");
+  add(r.tooBright, "above 65504");
+  if (r.replaced == r.pixels) {
+    return makeError(name + ": no usable radiance: every pixel is NaN, infinite, negative or "
+                            "above 65504 (" + kinds + ")");
+  }
+  return name + ": replaced " + std::to_string(r.replaced) + " of " + std::to_string(r.pixels) +
+         " pixels (" + kinds + "; NaN and negative by 0, the rest by 65504)";
 }
 
 Cubemap::Cubemap(int faceEdge, int mipCount) : size(faceEdge) {

@@ -27,8 +27,9 @@ namespace {
 
 Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadOptions& options,
                                             const std::string& name) {
-  const int64_t bad = ibl::sanitizeRadiance(image);
-  (void)bad;  // counted by the prefilter CLI; here silently clamped like any renderer would
+  auto verdict = ibl::radianceVerdict(ibl::sanitizeRadiance(image), name);
+  if (!verdict) return verdict.error();
+  if (!verdict->empty() && options.warnings) options.warnings->push_back(*verdict);
   ibl::PrefilterOptions po;
   po.faceSize = options.faceSize;
   po.samples = options.samples;
@@ -41,7 +42,27 @@ Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadO
 
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options) {
-  if (isPackedEnvironmentFile(path)) return readPackedEnvironment(path);
+  if (isPackedEnvironmentFile(path)) {
+    auto env = readPackedEnvironment(path);
+    if (!env) return env;
+    // RGBE holds no NaN, but a crafted file can hold absurd exponents: the same policy.
+    ibl::RadianceReport total;
+    for (int m = 0; m < env->specular.mipCount(); ++m) {
+      for (int f = 0; f < ibl::kFaceCount; ++f) {
+        const ibl::RadianceReport r = ibl::sanitizeRadiance(env->specular.face(m, f));
+        total.pixels += r.pixels;
+        total.nan += r.nan;
+        total.infinite += r.infinite;
+        total.negative += r.negative;
+        total.tooBright += r.tooBright;
+        total.replaced += r.replaced;
+      }
+    }
+    auto verdict = ibl::radianceVerdict(total, path);
+    if (!verdict) return verdict.error();
+    if (!verdict->empty() && options.warnings) options.warnings->push_back(*verdict);
+    return env;
+  }
   auto image = readImage(path);
   if (!image) return image.error();
   return prefilterPanorama(*image, options, path);
