@@ -36,6 +36,22 @@ import bpy
 import mathutils
 
 
+def scene_diagonal():
+    """The diagonal of the world-space bounding box of every mesh (as Penumbra's bounds)."""
+    import mathutils
+    lo, hi = [float("inf")] * 3, [float("-inf")] * 3
+    for ob in bpy.context.scene.objects:
+        if ob.type != "MESH":
+            continue
+        for corner in ob.bound_box:
+            w = ob.matrix_world @ mathutils.Vector(corner)
+            for k in range(3):
+                lo[k], hi[k] = min(lo[k], w[k]), max(hi[k], w[k])
+    if lo[0] > hi[0]:
+        return 4.0
+    return sum((h - l) ** 2 for l, h in zip(lo, hi)) ** 0.5
+
+
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     import argparse
@@ -297,7 +313,10 @@ def main():
         e.shadow_cube_size = "1024"
         e.shadow_cascade_size = "2048"
         e.use_gtao = True
-        e.gtao_distance = float(sf.get("progressive", {}).get("occlusionDistance", 0.5))
+        # Penumbra's occlusion distance; 0 or absent means automatic there: a quarter of the
+        # scene's bounding-box diagonal (penumbra/settings.h, kAutoOcclusionFraction).
+        d = float(sf.get("progressive", {}).get("occlusionDistance", 0.0))
+        e.gtao_distance = d if d > 0 else 0.25 * scene_diagonal()
         e.use_ssr = True
         e.use_ssr_refraction = False
         scene.render.filter_size = 1.0

@@ -22,7 +22,9 @@ Result<ToneMapper> parseToneMapper(std::string_view name);
 struct ProgressiveSettings {
   int frames = 128;                // m, the target number of intermediate frames (1..4096)
   float directDelay = 0.3f;        // f_d: direct-light samples start at frame floor(m * f_d)
-  float occlusionDistance = 0.5f;  // d_occ in metres (scene units)
+  // d_occ in scene units; 0 = automatic: kAutoOcclusionFraction of the scene's bounding-box
+  // diagonal, so a model in millimetres and a room in metres both work without a setting.
+  float occlusionDistance = 0.0f;
   int lightSamples = 0;            // shadow-map samples per area light; 0 = automatic
   int shadowMapSize = 1024;
   bool screenSpaceIndirect = true;  // one-bounce screen-space indirect light
@@ -33,6 +35,12 @@ struct ProgressiveSettings {
   uint32_t seed = 1;  // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };
+
+// The automatic occlusion distance as a fraction of the scene's bounding-box diagonal.
+inline constexpr float kAutoOcclusionFraction = 0.25f;
+// The occlusion distance in effect for a scene whose bounding-box diagonal is `sceneDiagonal`
+// (0 or less: no geometry, then 1 unit).
+float effectiveOcclusionDistance(const ProgressiveSettings& settings, float sceneDiagonal);
 
 struct RenderSettings {
   int width = 1280;

@@ -84,8 +84,9 @@ const SettingInfo kSchema[] = {
     {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
      "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
     {"occlusionDistance", "progressive", "occlusionDistance", "--occlusion-distance",
-     SettingType::Float, 0, 1e9, true, false, false, true,
-     "d_occ, the length of occlusion rays in scene units (metres)",
+     SettingType::Float, 0, 1e9, false, false, false, true,
+     "d_occ, the length of occlusion rays in scene units; 0 = automatic, a quarter of the "
+     "scene's bounding-box diagonal",
      PN_FIELD(progressive.occlusionDistance, float)},
     {"lightSamples", "progressive", "lightSamples", "--light-samples", SettingType::Int, 0, 4096,
      false, false, false, true, "shadow-map samples per area light (0 = automatic)",
@@ -178,6 +179,13 @@ json settingJson(const RenderSettings& s, const SettingInfo& info) {
       return static_cast<double>(static_cast<float>(v));
   }
   return nullptr;
+}
+
+float effectiveOcclusionDistance(const ProgressiveSettings& s, float sceneDiagonal) {
+  if (s.occlusionDistance > 0.0f) return s.occlusionDistance;
+  return sceneDiagonal > 0.0f && std::isfinite(sceneDiagonal)
+             ? kAutoOcclusionFraction * sceneDiagonal
+             : 1.0f;
 }
 
 std::span<const SettingInfo> settingsSchema() {

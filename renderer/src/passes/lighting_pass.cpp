@@ -48,7 +48,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
   p.set("uPrepass", kUnitPrepass);
   p.set("uAccumulated", kUnitAccumulated);
-  p.set("uOcclusionDistance", s.progressive.occlusionDistance);
+  p.set("uOcclusionDistance", b.occlusionDistance);
   p.set("uView", cm.view);
   p.set("uProjection", cm.projection);
   p.set("uViewportSize", glm::vec2(b.targets->width, b.targets->height));

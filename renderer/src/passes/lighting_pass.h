@@ -46,6 +46,7 @@ struct LightingBatch {
   const RenderSettings* settings = nullptr;
   const CameraMatrices* camera = nullptr;  // jittered
   glm::vec2 sequence{0.0f};                // the frame's low-discrepancy point
+  float occlusionDistance = 1.0f;          // in effect (the automatic one resolved)
   bool first = true;       // clears the frame and adds environment, punctual lights, background
   bool occlusion = false;  // the prepass is valid: occlusion rays and screen-space indirect light
   int coverageFrame = -1;  // stochastic coverage index of BLEND surfaces (< 0: alpha-blend)

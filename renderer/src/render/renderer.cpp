@@ -226,17 +226,21 @@ struct Renderer::Impl : progressive::FrameRenderer {
     int shadowStream = 0;  // each shadow map of the frame decides coverage on its own
     const size_t batches = std::max<size_t>(1, (area.size() + kBatch - 1) / kBatch);
     for (size_t b = 0; b < batches; ++b) {
-      passes::LightingBatch batch{.targets = &*targets,
-                                  .scene = scene.get(),
-                                  .environment = environment.get(),
-                                  .shadows = &*shadows,
-                                  .settings = &settings,
-                                  .camera = &cm,
-                                  .sequence = plan.sequence,
-                                  .first = b == 0,
-                                  // Occlusion only in the first batch: later ones add light.
-                                  .occlusion = b == 0 && plan.occlusion && prepassValid,
-                                  .coverageFrame = cameraCoverageFrame(plan)};
+      passes::LightingBatch batch{
+          .targets = &*targets,
+          .scene = scene.get(),
+          .environment = environment.get(),
+          .shadows = &*shadows,
+          .settings = &settings,
+          .camera = &cm,
+          .sequence = plan.sequence,
+          .occlusionDistance = effectiveOcclusionDistance(
+              settings.progressive,
+              scene && scene->bounds().valid() ? 2.0f * scene->bounds().radius() : 0.0f),
+          .first = b == 0,
+          // Occlusion only in the first batch: later ones add light.
+          .occlusion = b == 0 && plan.occlusion && prepassValid,
+          .coverageFrame = cameraCoverageFrame(plan)};
       std::vector<const LightSample*> samples(
           area.begin() + static_cast<std::ptrdiff_t>(std::min(b * kBatch, area.size())),
           area.begin() + static_cast<std::ptrdiff_t>(std::min((b + 1) * kBatch, area.size())));
