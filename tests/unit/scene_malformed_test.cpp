@@ -150,6 +150,25 @@ TEST(SceneGltfMalformed, MissingTextureIsOnlyAWarning) {
   EXPECT_TRUE(hasWarning(*scene, "gone.png"));
 }
 
+TEST(SceneGltfMalformed, HugeDeclaredPngSaysHowLarge) {
+  // A PNG header declaring 60000 x 60000: stb_image calls that an "unknown image type"; the
+  // warning must say what is wrong.
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0,    13,
+                              'I',  'H', 'D', 'R', 0,    0,    0xEA, 0x60, 0, 0, 0xEA, 0x60,
+                              8,    6,   0,   0,   0,  // depth, colour type, compression, filter,
+                                                       // interlace
+                              0,    0,   0,   0,       // CRC (not checked)
+                              0,    0,   0,   0,   'I',  'E',  'N',  'D',  0, 0, 0,    0};
+  GltfBuilder b = texturedTriangle();
+  b.doc["images"][0] = {{"uri", "data:image/png;base64," + base64(png)}};
+  b.doc["materials"][0] = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}};
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  EXPECT_TRUE(scene->images[0].placeholder);
+  EXPECT_TRUE(hasWarning(*scene, "60000x60000 PNG is too large to decode"))
+      << (scene->warnings.empty() ? std::string("no warnings") : scene->warnings.back());
+}
+
 TEST(SceneGltfMalformed, CyclicOrSharedNodesAreErrors) {
   GltfBuilder b = texturedTriangle();  // node 0 holds the mesh
   b.node({{"children", {2}}});         // node 1 -> 2

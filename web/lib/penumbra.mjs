@@ -183,7 +183,9 @@ export class Viewer {
     this.#sceneInfo = { name: main.name, triangles: info.triangles, lights: info.lights,
                         cameras: info.cameras, warnings: info.warnings, bounds: info.bounds,
                         environment: info.environment };
-    for (const w of info.warnings || []) console.warn(`[penumbra] ${main.name}: ${w}`);
+    for (const w of info.warnings || []) {
+      console.warn(`[penumbra] ${w.startsWith(main.name) ? w : `${main.name}: ${w}`}`);
+    }
     // The user's own settings win over the scene file's.
     this.#call('pv_set_settings', JSON.stringify(this.#overrides));
     this.#orbit = OrbitCamera.fromCamera(info.camera, info.bounds);

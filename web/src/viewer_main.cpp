@@ -168,9 +168,9 @@ json loadScene(Viewer& v, const std::string& path) {
   // The canvas decides the resolution.
   request.settings = {{"width", std::to_string(v.settings.width)},
                       {"height", std::to_string(v.settings.height)}};
-  // wasm32 memory tops out at 2 GiB, and SwiftShader/most GPUs cap WebGL textures at 8192.
+  // wasm32 memory tops out at 2 GiB; textures are kept up to what the device takes.
   request.memoryBudgetBytes = int64_t{768} << 20;
-  request.maxTextureSize = 4096;
+  request.maxTextureSize = std::max(1, v.renderer->maxTextureSize());
   request.panorama = {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples};
   if (keepEnvironment) request.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::None};
   auto job = RenderJob::load(request);

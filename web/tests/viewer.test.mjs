@@ -326,6 +326,22 @@ test('WebGL context loss is shown, and restore rebuilds everything and converges
   });
 });
 
+test('on a phone-sized viewport the settings panel starts collapsed and the toggle opens it', { timeout: TEST_MS }, async () => {
+  const phone = await withTimeout(browser.context.newPage(), 10_000, 'new page');
+  recordConsole(phone, consoleLines);
+  await step('phone', phone, async () => {
+    await phone.setViewportSize({ width: 390, height: 844 });
+    await phone.goto(`${base()}/index.html?frames=${FRAMES}&pixelRatio=1`, { timeout: 20_000 });
+    await phone.waitForFunction(() => window.penumbraPage && window.penumbraPage.ready, null,
+                                { timeout: 30_000 });
+    assert.equal(await phone.isHidden('#panel'), true, 'panel collapsed on a narrow screen');
+    await phone.click('#toggle-panel');
+    assert.equal(await phone.isVisible('#panel'), true, 'the toggle opens it');
+    await phone.screenshot({ path: join(outDir, 'viewer-phone.png') });
+  });
+  await phone.close();
+});
+
 test('half-float accumulation (forceHalfFloat) converges to the float image', { timeout: TEST_MS }, async () => {
   assert.ok(shared.converged, 'needs the converged float canvas of the first test');
   const half = await openPage(`${QUERY}&halfFloat=1`);

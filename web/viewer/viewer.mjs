@@ -95,7 +95,9 @@ function wirePanel(viewer) {
     toggle.setAttribute('aria-expanded', String(v));
   };
   toggle.onclick = () => setVisible(form.classList.contains('hidden'));
-  if (query.get('panel') === '0') setVisible(false);
+  // On a narrow (phone) screen the panel would cover half the view: it starts collapsed.
+  const narrow = window.matchMedia('(max-width: 600px)').matches;
+  if (query.get('panel') === '0' || (narrow && query.get('panel') !== '1')) setVisible(false);
 }
 
 // ---- files: drop and picker -------------------------------------------------------------------
@@ -133,7 +135,12 @@ async function loadScene(viewer, source, options) {
   page.sceneName = info.name;
   fillPanel(viewer.settings);
   document.title = `${info.name} — Penumbra viewer`;
-  for (const w of info.warnings || []) showMessage(`${info.name}: ${w}`, { kind: 'info', timeoutMs: 8000 });
+  // A good load clears the notes of earlier failures: the problem they named is gone.
+  for (const note of [...$('messages').querySelectorAll('.message.error')]) note.remove();
+  // Warnings usually start with the file's name already; do not say it twice.
+  for (const w of info.warnings || []) {
+    showMessage(w.startsWith(info.name) ? w : `${info.name}: ${w}`, { kind: 'info', timeoutMs: 8000 });
+  }
   return info;
 }
 

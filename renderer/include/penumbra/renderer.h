@@ -92,6 +92,9 @@ class Renderer {
 
   // The accumulation format in use and the capability report, for logs.
   std::string capabilityReport() const;
+  // The device's largest texture side: textures larger than this must be downscaled on load
+  // (JobRequest::maxTextureSize).
+  int maxTextureSize() const;
   const RenderSettings& settings() const;
 
  private:

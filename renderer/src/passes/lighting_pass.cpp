@@ -147,7 +147,6 @@ Status LightingPass::draw(const LightingBatch& b) {
     opaque.depthWrite = false;
     opaque.blend = gl::Blend::Additive;
   }
-  b.targets->frame.framebuffer.bind();
   drawItems(p, *b.scene, b.scene->opaque(), true, opaque);
   // Stochastic coverage: BLEND surfaces are drawn like opaque ones, minus the fragments this
   // frame does not keep, in every batch (the same decisions each time).

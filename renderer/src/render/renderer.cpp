@@ -341,6 +341,9 @@ const FrameStats& Renderer::lastFrame() const {
 const RenderSettings& Renderer::settings() const {
   return impl_->settings;
 }
+int Renderer::maxTextureSize() const {
+  return impl_->caps.maxTextureSize;
+}
 std::string Renderer::capabilityReport() const {
   return impl_->caps.report();
 }

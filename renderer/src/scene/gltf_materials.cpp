@@ -71,6 +71,20 @@ bool pngChunksFit(const uint8_t* data, uint64_t size) {
   return false;  // no IEND
 }
 
+// The size a PNG's IHDR declares (0 x 0 when it is not a PNG with an IHDR first): stb_image
+// refuses very large PNGs as an "unknown image type", which hides the real problem.
+std::pair<uint32_t, uint32_t> pngDeclaredSize(const uint8_t* data, uint64_t size) {
+  static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size < 24 || std::memcmp(data, kSignature, 8) != 0 || std::memcmp(data + 12, "IHDR", 4)) {
+    return {0, 0};
+  }
+  auto be32 = [&](uint64_t at) {
+    return (uint32_t{data[at]} << 24) | (uint32_t{data[at + 1]} << 16) |
+           (uint32_t{data[at + 2]} << 8) | data[at + 3];
+  };
+  return {be32(16), be32(20)};
+}
+
 Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadContext& ctx) {
   const ImageDesc& desc = doc.images[static_cast<size_t>(index)];
   std::string label = desc.name;
@@ -114,6 +128,11 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
     return placeholder(label, normalOnly);
   }
   int w = 0, h = 0, comp = 0;
+  if (const auto [pw, ph] = pngDeclaredSize(data, size); uint64_t{pw} * ph > (uint64_t{1} << 28)) {
+    ctx.warn(what + ": a " + std::to_string(pw) + "x" + std::to_string(ph) +
+             " PNG is too large to decode (more than 2^28 pixels); using a 1x1 placeholder");
+    return placeholder(label, normalOnly);
+  }
   if (size == 0 || size > 0x7FFFFFFF ||
       !stbi_info_from_memory(data, static_cast<int>(size), &w, &h, &comp)) {
     ctx.warn(what + ": cannot decode (" + std::string(size == 0 ? "empty" : stbi_failure_reason()) +
