@@ -366,6 +366,8 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_camera(float ex, float ey, float ez, flo
     c.name = "orbit";
     c.world = glm::inverse(glm::lookAt(eye, target, up));
     c.yfov = yfov;
+    // Fit as the scene's camera does, so the first drag does not change the framing.
+    c.aspect = (*v)->sceneCamera.aspect > 0.0f ? (*v)->sceneCamera.aspect : 1.0f;
     float dist = glm::length(dir), radius = 1.0f;
     if ((*v)->scene && (*v)->scene->bounds.valid()) {
       dist = glm::length((*v)->scene->bounds.center() - eye);

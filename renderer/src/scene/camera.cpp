@@ -29,7 +29,7 @@ Camera defaultCamera(const Scene& scene) {
     radius = scene.bounds.radius();
     if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
   }
-  // The bounding sphere touches the top and bottom of the view at this distance.
+  // The bounding sphere touches the top and bottom of a square view at this distance.
   const float distance = radius / std::sin(kFov * 0.5f);
   // From +Z, raised about 14 degrees so the ground plane of a typical scene is visible.
   const glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
@@ -39,7 +39,8 @@ Camera defaultCamera(const Scene& scene) {
   cam.name = "default";
   cam.world = glm::inverse(glm::lookAt(eye, center, glm::vec3(0, 1, 0)));
   cam.yfov = kFov;
-  cam.aspect = 0.0f;
+  // The bounding sphere fits a square: in a portrait view the horizontal extent is kept.
+  cam.aspect = 1.0f;
   cam.znear = std::max(distance - radius, distance * 0.01f) * 0.5f;
   cam.zfar = 0.0f;
   return cam;
