@@ -202,7 +202,9 @@ int main(int argc, char** argv) {
   options.progress = [&bar](float f) { bar(f); };
   // The GPU path when asked for, or by default where it is faster (a hardware GPU).
   std::unique_ptr<penumbra::GlContext> context;
-  if (!useCpu) {
+  // Without a GPU device every context is software, where the CPU path is faster: then a
+  // context (slow to create, about 12 MB) is made only for an explicit --gpu.
+  if (!useCpu && (useGpu || penumbra::GlContext::hardwareGpuPresent())) {
     auto ctx = penumbra::GlContext::create();
     if (ctx) {
       if (useGpu || penumbra::gpuPrefilterIsFaster()) context = std::move(*ctx);

@@ -51,6 +51,11 @@ class GlContext {
   static Result<std::unique_ptr<GlContext>> adoptCurrent(GetProcAddress getProcAddress = nullptr,
                                                          bool desktopGl = false);
 
+  // False when the machine exposes no GPU device (no DRM render node, no NVIDIA device node):
+  // then every context is a software rasterizer, and a tool that would only use the GPU when
+  // it is faster need not create one. True in the browser (the page cannot tell).
+  static bool hardwareGpuPresent();
+
   virtual GlBackend backend() const = 0;
   // "EGL surfaceless: OpenGL ES 3.0 Mesa 22.3.6 (llvmpipe ...)" and the like.
   virtual std::string description() const = 0;

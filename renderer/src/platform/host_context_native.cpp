@@ -1,7 +1,10 @@
-// GlContext::adoptCurrent natively: the host's current context, entry points loaded through
-// the host's loader (eglGetProcAddress by default). Nothing is created, made current or
-// destroyed here, and no GL state is set: the Renderer saves and restores what it touches.
+// GlContext::adoptCurrent and hardwareGpuPresent natively. adoptCurrent: the host's current
+// context, entry points loaded through the host's loader (eglGetProcAddress by default). Nothing is
+// created, made current or destroyed here, and no GL state is set: the Renderer saves and restores
+// what it touches.
 #include <EGL/egl.h>
+
+#include <filesystem>
 
 #include "platform/backends.h"
 
@@ -40,6 +43,14 @@ Result<std::unique_ptr<GlContext>> adoptHostContext(GetProcFn getProc, bool desk
 }
 
 }  // namespace platform
+
+bool GlContext::hardwareGpuPresent() {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/dev/dri", ec)) {
+    if (entry.path().filename().string().rfind("renderD", 0) == 0) return true;
+  }
+  return std::filesystem::exists("/dev/nvidia0", ec) || std::filesystem::exists("/dev/dxg", ec);
+}
 
 Result<std::unique_ptr<GlContext>> GlContext::adoptCurrent(GetProcAddress getProcAddress,
                                                            bool desktopGl) {

@@ -4,6 +4,10 @@
 
 namespace penumbra {
 
+bool GlContext::hardwareGpuPresent() {
+  return true;
+}
+
 Result<std::unique_ptr<GlContext>> GlContext::adoptCurrent(GetProcAddress, bool) {
   return makeError("GlContext::adoptCurrent is native only; in a page use web/lib/penumbra.mjs");
 }
