@@ -15,7 +15,7 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 failures=0
 
-# Inputs: Portable Float Maps (OpenImageIO reads them; they can hold NaN, Inf and negatives).
+# Inputs: Portable Float Maps (Penumbra reads them; they can hold NaN, Inf and negatives).
 python3 - "$WORK" <<'EOF'
 import struct, sys
 work = sys.argv[1]

@@ -93,7 +93,7 @@ TEST(ImageIoTest, HdrRoundTripAndReaderAgreement) {
   Image image = gradient(40, 5, 3, 50.0f);
   image.pixel(3, 2)[1] = 1e5f;
   ASSERT_TRUE(writeImage(dir + "/a.hdr", image).ok());
-  auto back = readImage(dir + "/a.hdr");  // OpenImageIO natively
+  auto back = readImage(dir + "/a.hdr");
   ASSERT_TRUE(back.ok()) << back.message();
   auto bytes = detail::readFileBytes(dir + "/a.hdr");
   ASSERT_TRUE(bytes.ok());

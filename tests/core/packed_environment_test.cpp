@@ -136,7 +136,7 @@ TEST(PackedEnvironmentTest, ManifestEmbeddedAndBeside) {
   EXPECT_EQ(j["sh"]["coefficients"].size(), 9u);
   EXPECT_EQ(j["generator"], "penumbra-test 1");
 
-  // The same manifest is the PENUMBRA_ENV header line, and OpenImageIO reads the file.
+  // The same manifest is the PENUMBRA_ENV header line, and a Radiance reader reads the file.
   auto bytes = detail::readFileBytes(dir + "/env.hdr");
   ASSERT_TRUE(bytes.ok());
   auto decoded = rgbe::decodeFile(*bytes, "env.hdr");

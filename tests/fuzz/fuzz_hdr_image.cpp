@@ -2,11 +2,10 @@
 //  - By default every input goes to Penumbra's own Radiance RGBE codec (rgbe::decodeFile): the
 //    route of the packed environment format and of the wasm build, and the only HDR decoder
 //    that is Penumbra's code.
-//  - With PENUMBRA_FUZZ_OIIO=1 in the environment, inputs whose first byte is even go to
-//    readImageFromMemory instead (natively OpenImageIO: .hdr, .exr, .png, .pfm, ...). OIIO is
-//    not instrumented, runs at about 50 inputs/s under ASan (against thousands for the RGBE
-//    codec) and leaks inside its own libpng error path (a 31-byte std::string, found in the
-//    first run), so that mode needs -detect_leaks=0 and is not part of tools/test.
+//  - With PENUMBRA_FUZZ_DECODERS=1 in the environment, inputs whose first byte is even go to
+//    readImageFromMemory instead (every decoder: RGBE, PFM, stb_image, OpenEXR). stb_image and
+//    OpenEXR are not instrumented and are fuzzed by their own projects, so that mode is not
+//    part of tools/test.
 // The first byte is always consumed as the selector, so seeds work in both modes.
 #include <cstddef>
 #include <cstdint>
@@ -18,11 +17,11 @@
 #include "penumbra/image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const bool oiio = std::getenv("PENUMBRA_FUZZ_OIIO") != nullptr;
+  static const bool decoders = std::getenv("PENUMBRA_FUZZ_DECODERS") != nullptr;
   if (size < 1) return 0;
   const std::span<const uint8_t> bytes(data + 1, size - 1);
   const int64_t maxPixels = int64_t{1} << 22;  // keep RSS under libFuzzer's limit
-  if (oiio && (data[0] & 1) == 0) {
+  if (decoders && (data[0] & 1) == 0) {
     penumbra::ReadOptions options;
     options.maxPixels = maxPixels;
     auto image = penumbra::readImageFromMemory(bytes, "fuzz.hdr", options);

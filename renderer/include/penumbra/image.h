@@ -1,6 +1,7 @@
 // Image: float pixels in memory, and the one small read/write API that Penumbra uses for every
-// image file. Natively it goes through OpenImageIO (PNG, EXR, Radiance HDR, and whatever else
-// OIIO reads); in the wasm build through stb_image (HDR, PNG, JPEG) and stb_image_write (PNG).
+// image file: Radiance .hdr through Penumbra's own RGBE codec, OpenEXR through the OpenEXR
+// library (native builds only), PFM, and PNG, JPEG, BMP, TGA, GIF, PSD and PNM through
+// stb_image; PNG written with stb_image_write. Natively and in the wasm build alike.
 // Pixels are row-major with row 0 at the top of the picture, channels interleaved.
 #pragma once
 

@@ -1,4 +1,5 @@
-// Internal helpers shared by the native (OpenImageIO) and web (stb) image back ends: atomic
+// Internal helpers shared by the native and web image code (image_decode.cpp, exr_native.cpp,
+// image_io_web.cpp): atomic
 // file writes, whole-file reads, and the per-build hooks that writeImage dispatches to.
 #pragma once
 
@@ -28,10 +29,12 @@ Status writeAtomic(const std::string& path,
 // The common case: bytes already in memory.
 Status writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes);
 
-// Back-end hooks. The native build writes EXR through OpenImageIO; the web build has no EXR
-// writer and returns an error.
+// Back-end hooks. The native build reads and writes EXR through OpenEXR; the web build has
+// no EXR support and returns an error.
 Status writeExrFile(const std::string& tempPath, const std::string& finalPathForErrors,
                     const Image& image);
+Result<Image> readExr(std::span<const uint8_t> bytes, const std::string& name,
+                      const ReadOptions& options);
 
 // Converts 1..4-channel pixels to the channel count of `image` (helper for encoders).
 // Returns RGB floats for pixel i: grey is replicated, alpha ignored.
