@@ -95,6 +95,21 @@ else
   failures=$((failures + 1))
 fi
 
+# The default run writes the packed environment and its manifest, nothing else.
+if "$TOOL" "$WORK/pano.pfm" -o "$WORK/default" --size 16 --samples 16 -q 2>"$WORK/err.txt"; then
+  got=$(cd "$WORK/default" && find . -type f | sort | tr '\n' ' ')
+  if [ "$got" = "./environment.hdr ./environment.json " ]; then
+    echo "ok   [default-outputs]"
+  else
+    echo "FAIL [default-outputs]: wrote $got" >&2
+    failures=$((failures + 1))
+  fi
+else
+  echo "FAIL [default-outputs]: non-zero exit" >&2
+  cat "$WORK/err.txt" >&2
+  failures=$((failures + 1))
+fi
+
 # A normal run with every output format.
 OUT="$WORK/all"
 if ! "$TOOL" "$WORK/pano.pfm" -o "$OUT" --size 16 --samples 16 --lut-size 16 --format all --threads 2 \

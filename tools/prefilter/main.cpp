@@ -32,12 +32,14 @@ constexpr const char* kFooter = R"(Outputs in OUTDIR:
                                       as the header line PENUMBRA_ENV={...} and beside it
   faces/mip<m>_<px|nx|py|ny|pz|nz>.exr|.hdr|.png   --format faces-*/all (PNG: 8-bit sRGB,
                                       clamped at 1, for viewing only)
-  preview/mip<m>.png                  equirectangular view of each mip (sRGB, clamped)
-  brdf_lut.exr, brdf_lut.png          DFG LUT: x = n.v, y = perceptual roughness (row 0 first),
+  preview/mip<m>.png                  --extras or --format all: equirectangular view of each
+                                      mip (sRGB, clamped)
+  brdf_lut.exr, brdf_lut.png          --extras/all: DFG LUT: x = n.v, y = perceptual roughness (row 0 first),
                                       both at texel centres;
                                       R = A, G = B (specular = prefiltered * (F0 A + B)),
                                       B = A + B (E_ss); PNG linear 8-bit
-  sh.json                             9 radiance SH coefficients; E(n) = sum A_l L_lm Y_lm(n)
+  sh.json                             --extras/all: 9 radiance SH coefficients;
+                                      E(n) = sum A_l L_lm Y_lm(n)
 Conventions: glTF frame (+Y up); GL cube-map face orientation; panorama centre column = +X,
 u toward +Z, top row = +Y (Blender/three.js); mip m of M has perceptual roughness m/(M-1),
 GGX alpha = roughness^2; mip 0 is the unfiltered mirror level; faces halve down to 4 pixels.)";
@@ -89,6 +91,7 @@ Status checkOutputFolder(const std::string& folder) {
 struct Writer {
   std::string outDir;
   bool quiet = false;
+  bool extras = false;
   int written = 0;
   bool write(const std::string& relative, const Image& image, bool srgb = false) {
     const std::string path = outDir + "/" + relative;
@@ -122,6 +125,7 @@ int main(int argc, char** argv) {
   bool useCpu = false;
   bool useGpu = false;
   bool quiet = false;
+  bool extras = false;
   app.add_option("INPUT", input, "2:1 equirectangular panorama (.hdr, .exr, .png, ...)")
       ->required();
   app.add_option("-o,--output", outDir, "output folder (created if missing)")->required();
@@ -143,6 +147,8 @@ int main(int argc, char** argv) {
                "with a warning when no context can be made)")
       ->excludes(cpuFlag);
   app.add_option("--threads", threads, "worker threads, 0 = all cores")->capture_default_str();
+  app.add_flag("--extras", extras,
+               "also write the previews, the DFG table and the SH (as --format all does)");
   app.add_flag("-q,--quiet", quiet, "print errors and warnings only");
   try {
     app.parse(argc, argv);
@@ -253,20 +259,24 @@ int main(int argc, char** argv) {
       }
     }
   }
-  std::error_code ec;
-  std::filesystem::create_directories(outDir + "/preview", ec);
-  for (int m = 0; m < cube.mipCount(); ++m) {
-    const Image preview = ibl::cubemapToPanorama(cube, m, 4 * cube.faceSize(m), threads);
-    if (!out.write("preview/mip" + std::to_string(m) + ".png", preview, true)) return 1;
+  // Previews, the DFG table and the SH are for people and other renderers; an asset pipeline
+  // that needs only the packed file does not pay for them.
+  if (extras || all) {
+    std::error_code ec;
+    std::filesystem::create_directories(outDir + "/preview", ec);
+    for (int m = 0; m < cube.mipCount(); ++m) {
+      const Image preview = ibl::cubemapToPanorama(cube, m, 4 * cube.faceSize(m), threads);
+      if (!out.write("preview/mip" + std::to_string(m) + ".png", preview, true)) return 1;
+    }
+    const Image lut = ibl::computeBrdfLut({.size = lutSize, .samples = 512, .threads = threads});
+    if (!out.write("brdf_lut.exr", lut) || !out.write("brdf_lut.png", lut)) return 1;
+    const std::string shPath = outDir + "/sh.json";
+    if (!out.report(ibl::writeShJson(shPath, env->sh), shPath)) return 1;
   }
-  const Image lut = ibl::computeBrdfLut({.size = lutSize, .samples = 512, .threads = threads});
-  if (!out.write("brdf_lut.exr", lut) || !out.write("brdf_lut.png", lut)) return 1;
-  const std::string shPath = outDir + "/sh.json";
-  if (!out.report(ibl::writeShJson(shPath, env->sh), shPath)) return 1;
   if (!quiet) {
     std::printf(
         "prefiltered %dx%d to %d-pixel faces, %d mips, %d samples: read %.2f s, prefilter "
-        "%.2f s, LUT and writing %.2f s\n",
+        "%.2f s, writing %.2f s\n",
         panorama->width, panorama->height, size, cube.mipCount(), samples, seconds(start, read),
         seconds(read, prefiltered), seconds(prefiltered, std::chrono::steady_clock::now()));
   }
