@@ -10,6 +10,8 @@
 #include "chunks/environment.glsl"
 #if PN_AREA
 #include "chunks/area_lights.glsl"
+#endif
+#if PN_AREA || PN_PUNCTUAL
 #include "chunks/shadows.glsl"
 #endif
 #if PN_OCCLUSION
@@ -38,6 +40,7 @@ uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 direct
 uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
 uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
 uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
+uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: unshadowed)
 
 out vec4 fragColor;
 
@@ -110,7 +113,9 @@ void main() {
   }
 #endif
 #if PN_PUNCTUAL
-  // Punctual lights (KHR_lights_punctual), unshadowed.
+  // Punctual lights (KHR_lights_punctual): spot and directional samples with a shadow map each
+  // (directional ones from a direction jittered over the light's angular size), point lights
+  // unshadowed.
   for (int i = 0; i < MAX_PUNCTUAL; ++i) {
     if (i >= uPunctualCount) break;
     vec3 l;
@@ -136,6 +141,7 @@ void main() {
     }
     float NoL = dot(n, l);
     if (NoL <= 0.0) continue;
+    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
     vec3 e = uPunctualColor[i] * attenuation * NoL;
     color += e * (diffuseColor * INV_PI + specularBrdf(n, v, l, f0, alpha, 1.0));
   }

@@ -27,6 +27,8 @@ export interface Settings {
   /** Shadow-map samples per area light; 0 = automatic. */
   lightSamples?: number;
   shadowMapSize?: number;
+  /** Angular diameter of directional lights in degrees (0..30; default 0.53, the sun's). */
+  directionalAngle?: number;
   /** Rotates every sample sequence. */
   seed?: number;
   environmentIntensity?: number;

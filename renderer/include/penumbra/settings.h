@@ -32,6 +32,9 @@ struct ProgressiveSettings {
   // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
   // default indirect clamp of Cycles, the reference the evaluation compares against.
   float indirectClamp = 10.0f;
+  // Angular diameter of directional lights in degrees: their shadow-map samples spread over
+  // it, so shadow edges soften with distance as under the sun (0.53 degrees).
+  float directionalAngle = 0.53f;
   uint32_t seed = 1;  // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };

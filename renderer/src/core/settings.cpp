@@ -101,6 +101,10 @@ const SettingInfo kSchema[] = {
      1e9, false, false, false, true,
      "largest radiance one screen-space indirect sample brings back (0 = no limit)",
      PN_FIELD(progressive.indirectClamp, float)},
+    {"directionalAngle", "progressive", "directionalAngle", "--directional-angle",
+     SettingType::Float, 0, 30, false, false, false, true,
+     "angular diameter of directional lights in degrees (soft shadow edges; 0.53 = the sun)",
+     PN_FIELD(progressive.directionalAngle, float)},
     {"seed", "progressive", "seed", "--seed", SettingType::UInt, 0, 4294967295.0, false, false,
      false, true, "seed of the sample sequences", PN_FIELD(progressive.seed, uint32_t)},
 };

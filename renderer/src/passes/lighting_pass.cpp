@@ -64,6 +64,11 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   std::vector<int> lightIds;
   std::vector<glm::mat4> shadowMatrices(kMaxShadowMaps, glm::mat4(1.0f));
   std::vector<glm::vec4> shadowParams(kMaxShadowMaps, glm::vec4(0.0f));
+  for (const PunctualDraw& pd : b.punctual) {
+    if (pd.shadowSlot < 0) continue;
+    shadowMatrices[static_cast<size_t>(pd.shadowSlot)] = pd.view.matrix;
+    shadowParams[static_cast<size_t>(pd.shadowSlot)] = pd.view.params;
+  }
   for (size_t i = 0; i < b.area.size(); ++i) {
     const AreaSampleDraw& a = b.area[i];
     const Light& l = *a.light;
@@ -95,12 +100,14 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   std::vector<glm::vec4> ppos, pdir;
   std::vector<glm::vec3> pcol;
   std::vector<glm::vec2> cone;
+  std::vector<int> punctualShadow;
   for (const PunctualDraw& pd : b.punctual) {
     if (static_cast<int>(ppos.size()) >= kMaxPunctualLights) break;
     const Light& l = *pd.light;
     const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
     ppos.emplace_back(l.position, type);
-    pdir.emplace_back(l.direction, l.range);
+    pdir.emplace_back(pd.direction, l.range);
+    punctualShadow.push_back(pd.shadowSlot);
     pcol.push_back(l.color * l.intensity * pd.weight);
     const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
     const float scale = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
@@ -111,6 +118,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uPunctualDir", std::span<const glm::vec4>(pdir));
   p.set("uPunctualColor", std::span<const glm::vec3>(pcol));
   p.set("uPunctualCone", std::span<const glm::vec2>(cone));
+  p.set("uPunctualShadow", std::span<const int>(punctualShadow));
 }
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only

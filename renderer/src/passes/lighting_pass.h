@@ -36,6 +36,9 @@ struct AreaSampleDraw {
 struct PunctualDraw {
   const Light* light = nullptr;
   float weight = 1.0f;
+  glm::vec3 direction{0.0f};  // of travel, this sample's (directional lights are jittered)
+  int shadowSlot = -1;        // its shadow map in the ShadowPass, or -1: unshadowed
+  ShadowView view;
 };
 
 struct LightingBatch {

@@ -76,10 +76,33 @@ Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
   return pass;
 }
 
+ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& bounds, int mapSize) {
+  const glm::vec3 d = glm::normalize(direction);
+  const glm::vec3 center = bounds.valid() ? bounds.center() : glm::vec3(0.0f);
+  const float radius = bounds.valid() ? std::max(bounds.radius(), 1e-3f) : 1.0f;
+  const glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 eye = center - d * (2.0f * radius);
+  const glm::mat4 view = glm::lookAt(eye, center, up);
+  const glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  ShadowView sv;
+  sv.matrix = bias * proj * view;
+  // w is 1 in a parallel projection: the offset per unit of distance is the texel size itself.
+  const float texel = 2.0f * radius / static_cast<float>(mapSize);
+  sv.params = glm::vec4(2e-4f * radius, 1.5f * texel, 0.0f, 0.0f);
+  return sv;
+}
+
 ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& origin,
                               const glm::vec3& direction, const glm::vec3& upHint,
                               int coverageFrame, int coverageStream) {
-  ShadowView sv = fitShadowView(origin, direction, upHint, scene.bounds(), size_);
+  return render(slot, scene, fitShadowView(origin, direction, upHint, scene.bounds(), size_),
+                coverageFrame, coverageStream);
+}
+
+ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView& sv,
+                              int coverageFrame, int coverageStream) {
   const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
                          glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
   const glm::mat4 viewProj = glm::inverse(bias) * sv.matrix;

@@ -25,6 +25,10 @@ struct ShadowView {
 // The light-space frustum for a sample at `origin` emitting along `direction`.
 ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
                          const glm::vec3& upHint, const Bounds& sceneBounds, int mapSize);
+// An orthographic view for light travelling along `direction` (a directional light), fitted
+// to the scene's bounding sphere.
+ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& sceneBounds,
+                                    int mapSize);
 
 class ShadowPass {
  public:
@@ -33,6 +37,10 @@ class ShadowPass {
   ShadowView render(int slot, const GpuScene& scene, const glm::vec3& origin,
                     const glm::vec3& direction, const glm::vec3& upHint, int coverageFrame,
                     int coverageStream);
+  // Renders map `slot` for a view fitted by the caller (fitDirectionalShadowView).
+  ShadowView render(int slot, const GpuScene& scene, const ShadowView& view, int coverageFrame,
+                    int coverageStream);
+  int size() const { return size_; }
   // Binds the maps to units firstUnit.. and sets uShadowMap0..3 on a program in use.
   void bind(const gl::Program& program, int firstUnit) const;
   int mapSize() const { return size_; }

@@ -161,9 +161,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
     std::vector<progressive::LightInfo> infos;
     for (const Light& l : lights) {
       progressive::LightInfo info;
-      info.shape = l.type == LightType::Rect   ? progressive::LightShape::Rect
-                   : l.type == LightType::Disk ? progressive::LightShape::Disk
-                                               : progressive::LightShape::Point;
+      // A directional light's samples spread over its angular size: a disk of directions.
+      info.shape = l.type == LightType::Rect ? progressive::LightShape::Rect
+                   : l.type == LightType::Disk || l.type == LightType::Directional
+                       ? progressive::LightShape::Disk
+                       : progressive::LightShape::Point;
       info.aspect = l.height > 0 ? l.width / l.height : 1.0f;
       infos.push_back(info);
     }
@@ -175,6 +177,18 @@ struct Renderer::Impl : progressive::FrameRenderer {
     Scene empty;
     if (scene) empty.bounds = scene->bounds();
     return defaultCamera(empty);
+  }
+
+  // The direction of travel of a punctual light sample: a directional light's is spread over
+  // its angular size (the sample point on a disk), the others' is the light's own.
+  glm::vec3 punctualDirection(const Light& l, glm::vec2 u) const {
+    if (l.type != LightType::Directional) return l.direction;
+    const float radius = std::tan(glm::radians(0.5f * settings.progressive.directionalAngle));
+    const glm::vec3 d = glm::normalize(l.direction);
+    const glm::vec3 a = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 right = glm::normalize(glm::cross(a, d)), up = glm::cross(d, right);
+    const glm::vec2 p = progressive::concentricDisk(u) * radius;
+    return glm::normalize(d + p.x * right + p.y * up);
   }
 
   // World position of a light sample on the light's true surface.
@@ -219,12 +233,22 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (l.isArea()) {
         area.push_back(&s);
       } else {
-        punctual.push_back({&l, s.weight});
+        punctual.push_back({&l, s.weight, punctualDirection(l, s.point)});
       }
     }
     constexpr size_t kBatch = passes::kMaxShadowMaps;
     int shadowStream = 0;  // each shadow map of the frame decides coverage on its own
-    const size_t batches = std::max<size_t>(1, (area.size() + kBatch - 1) / kBatch);
+    // Spot and directional samples (first batch only) take shadow maps before area samples;
+    // point lights would need six and stay unshadowed.
+    size_t punctualMaps = 0;
+    for (passes::PunctualDraw& pd : punctual) {
+      if (pd.light->type != LightType::Point && scene && punctualMaps < kBatch) {
+        pd.shadowSlot = static_cast<int>(punctualMaps++);
+      }
+    }
+    const size_t firstBatch = kBatch - punctualMaps;
+    const size_t batches =
+        area.size() <= firstBatch ? 1 : 1 + (area.size() - firstBatch + kBatch - 1) / kBatch;
     for (size_t b = 0; b < batches; ++b) {
       passes::LightingBatch batch{
           .targets = &*targets,
@@ -241,9 +265,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
           // Occlusion only in the first batch: later ones add light.
           .occlusion = b == 0 && plan.occlusion && prepassValid,
           .coverageFrame = cameraCoverageFrame(plan)};
+      const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
+      const size_t to = b == 0 ? firstBatch : from + kBatch;
       std::vector<const LightSample*> samples(
-          area.begin() + static_cast<std::ptrdiff_t>(std::min(b * kBatch, area.size())),
-          area.begin() + static_cast<std::ptrdiff_t>(std::min((b + 1) * kBatch, area.size())));
+          area.begin() + static_cast<std::ptrdiff_t>(std::min(from, area.size())),
+          area.begin() + static_cast<std::ptrdiff_t>(std::min(to, area.size())));
       // Sorted by light: the shader computes a light's unshadowed shading once for its samples.
       std::stable_sort(
           samples.begin(), samples.end(),
@@ -261,7 +287,25 @@ struct Renderer::Impl : progressive::FrameRenderer {
         }
         batch.area.push_back(draw);
       }
-      if (b == 0) batch.punctual = punctual;
+      if (b == 0) {
+        // Their maps follow the batch's area samples.
+        const int firstSlot = static_cast<int>(batch.area.size());
+        for (passes::PunctualDraw& pd : punctual) {
+          if (pd.shadowSlot < 0) continue;
+          pd.shadowSlot += firstSlot;
+          const Light& l = *pd.light;
+          pd.view = l.type == LightType::Directional
+                        ? shadows->render(pd.shadowSlot, *scene,
+                                          passes::fitDirectionalShadowView(
+                                              pd.direction, scene->bounds(), shadows->size()),
+                                          plan.frame - 1, ++shadowStream)
+                        : shadows->render(pd.shadowSlot, *scene, l.position, l.direction, l.up,
+                                          plan.frame - 1, ++shadowStream);
+          ++stats.shadowPasses;
+          endPass(&stats.shadowMs);
+        }
+        batch.punctual = punctual;
+      }
       PN_TRY(lighting->draw(batch));
       ++stats.lightingPasses;
       endPass(&stats.lightingMs);
