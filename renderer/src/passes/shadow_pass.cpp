@@ -7,6 +7,15 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace penumbra::passes {
+namespace {
+
+// Clip space [-1, 1]^3 to shadow-texture space [0, 1]^3.
+glm::mat4 clipToTexture() {
+  return glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
+         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+}
+
+}  // namespace
 
 ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
                          const glm::vec3& upHint, const Bounds& bounds, int mapSize) {
@@ -39,8 +48,7 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
   const float nearDist = std::max(1e-3f * radius, 1e-4f);
   farDist = farDist * 1.01f + nearDist;
   const glm::mat4 proj = glm::perspective(2.0f * std::atan(tanHalf), 1.0f, nearDist, farDist);
-  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
-                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  const glm::mat4 bias = clipToTexture();
   ShadowView sv;
   sv.matrix = bias * proj * view;
   const float texelAngle = 2.0f * tanHalf / static_cast<float>(mapSize);
@@ -84,8 +92,7 @@ ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& bo
   const glm::vec3 eye = center - d * (2.0f * radius);
   const glm::mat4 view = glm::lookAt(eye, center, up);
   const glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
-  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
-                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  const glm::mat4 bias = clipToTexture();
   ShadowView sv;
   sv.matrix = bias * proj * view;
   // w is 1 in a parallel projection: the offset per unit of distance is the texel size itself.
@@ -103,8 +110,7 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& 
 
 ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView& sv,
                               int coverageFrame, int coverageStream) {
-  const glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
-                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  const glm::mat4 bias = clipToTexture();
   const glm::mat4 viewProj = glm::inverse(bias) * sv.matrix;
   framebuffers_[static_cast<size_t>(slot)].bind();
   gl::setViewport(0, 0, size_, size_);
