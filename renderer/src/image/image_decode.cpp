@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -71,7 +72,10 @@ Result<Image> decodePfm(std::span<const uint8_t> b, const std::string& where,
     for (long i = 0; i < w * c; ++i) {
       uint8_t q[4];
       std::memcpy(q, row + i * 4, 4);
-      if (!little) std::swap(q[0], q[3]), std::swap(q[1], q[2]);
+      if (!little) {
+        std::swap(q[0], q[3]);
+        std::swap(q[1], q[2]);
+      }
       std::memcpy(&out[i], q, 4);
     }
   }

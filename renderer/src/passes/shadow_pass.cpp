@@ -15,6 +15,16 @@ glm::mat4 clipToTexture() {
          glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
 }
 
+// The view for the shader: world -> texture space, and the normal-offset bias (a constant part
+// from the scene's size, and 1.5 texels per unit of the projection's w).
+ShadowView shadowView(const glm::mat4& proj, const glm::mat4& view, float sceneRadius,
+                      float texelPerW) {
+  ShadowView sv;
+  sv.matrix = clipToTexture() * proj * view;
+  sv.params = glm::vec4(2e-4f * sceneRadius, 1.5f * texelPerW, 0.0f, 0.0f);
+  return sv;
+}
+
 }  // namespace
 
 ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
@@ -48,12 +58,8 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
   const float nearDist = std::max(1e-3f * radius, 1e-4f);
   farDist = farDist * 1.01f + nearDist;
   const glm::mat4 proj = glm::perspective(2.0f * std::atan(tanHalf), 1.0f, nearDist, farDist);
-  const glm::mat4 bias = clipToTexture();
-  ShadowView sv;
-  sv.matrix = bias * proj * view;
-  const float texelAngle = 2.0f * tanHalf / static_cast<float>(mapSize);
-  sv.params = glm::vec4(2e-4f * radius, 1.5f * texelAngle, 0.0f, 0.0f);
-  return sv;
+  // The texel's size grows with distance: its angle is the offset per unit of w.
+  return shadowView(proj, view, radius, 2.0f * tanHalf / static_cast<float>(mapSize));
 }
 
 Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
@@ -92,13 +98,8 @@ ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& bo
   const glm::vec3 eye = center - d * (2.0f * radius);
   const glm::mat4 view = glm::lookAt(eye, center, up);
   const glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
-  const glm::mat4 bias = clipToTexture();
-  ShadowView sv;
-  sv.matrix = bias * proj * view;
-  // w is 1 in a parallel projection: the offset per unit of distance is the texel size itself.
-  const float texel = 2.0f * radius / static_cast<float>(mapSize);
-  sv.params = glm::vec4(2e-4f * radius, 1.5f * texel, 0.0f, 0.0f);
-  return sv;
+  // w is 1 in a parallel projection: the offset is the texel size itself.
+  return shadowView(proj, view, radius, 2.0f * radius / static_cast<float>(mapSize));
 }
 
 ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& origin,
