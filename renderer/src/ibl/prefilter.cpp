@@ -185,21 +185,15 @@ std::vector<SampleGroup> buildSampleTable(float roughness, int samples, int sour
   return table;
 }
 
-inline F4 bilinear(const PaddedLevel& level, int face, float s, float t) {
-  const float x = s * static_cast<float>(level.size) + 0.5f;  // padded texel space, >= 0.5
-  const float y = t * static_cast<float>(level.size) + 0.5f;
-  const int x0 = static_cast<int>(x);
-  const int y0 = static_cast<int>(y);
-  const float fx = x - static_cast<float>(x0);
-  const float fy = y - static_cast<float>(y0);
-  const F4* p0 = &level.at(face, x0, y0);
-  const F4* p1 = p0 + level.stride;
+using I4 = int32_t __attribute__((vector_size(16)));
+
+// The bilinear blend of the 2x2 texels from p (top left) with the given row stride.
+inline F4 bilerp(const F4* p0, int stride, float fx, float fy) {
+  const F4* p1 = p0 + stride;
   const F4 top = p0[0] + (p0[1] - p0[0]) * fx;
   const F4 bottom = p1[0] + (p1[1] - p1[0]) * fx;
   return top + (bottom - top) * fy;
 }
-
-using I4 = int32_t __attribute__((vector_size(16)));
 
 // log2 for positive normal floats, four at a time, within 0.01 (as fastLog2).
 inline F4 fastLog2(F4 x) {
@@ -244,12 +238,30 @@ inline F4 filteredLookup4(const std::vector<PaddedLevel>& pyramid, F4 dx, F4 dy,
   // The source texel's solid angle is (2 / size)^2 ma^3 there, hence -1.5 log2(ma).
   const float maxLod = static_cast<float>(pyramid.size() - 1);
   const F4 lod = clampF4(lodBase - 1.5f * fastLog2(ma), 0.0f, maxLod);
+  // Texel addresses of both levels, four wide: level l has size0 / 2^l texels per edge (computed
+  // in the same order as one lane at a time would, so the result is bit-identical).
+  const I4 l0 = __builtin_convertvector(lod, I4);  // lod >= 0: truncation is floor
+  const F4 frac = lod - __builtin_convertvector(l0, F4);
+  const F4 sizeA = static_cast<float>(pyramid[0].size) * bitCast<F4>((127 - l0) << 23);
+  const F4 sizeB = sizeA * 0.5f;
+  const F4 xA = s * sizeA + 0.5f, yA = t * sizeA + 0.5f;  // padded texel space, >= 0.5
+  const F4 xB = s * sizeB + 0.5f, yB = t * sizeB + 0.5f;
+  const I4 x0A = __builtin_convertvector(xA, I4), y0A = __builtin_convertvector(yA, I4);
+  const I4 x0B = __builtin_convertvector(xB, I4), y0B = __builtin_convertvector(yB, I4);
+  const F4 fxA = xA - __builtin_convertvector(x0A, F4), fyA = yA - __builtin_convertvector(y0A, F4);
+  const F4 fxB = xB - __builtin_convertvector(x0B, F4), fyB = yB - __builtin_convertvector(y0B, F4);
+  const I4 strideA = __builtin_convertvector(sizeA, I4) + 2;
+  const I4 strideB = __builtin_convertvector(sizeB, I4) + 2;
+  const I4 indexA = (face * strideA + y0A) * strideA + x0A;
+  const I4 indexB = (face * strideB + y0B) * strideB + x0B;
   F4 sum{};
   for (int i = 0; i < 4; ++i) {
-    const int l0 = static_cast<int>(lod[i]);
-    const float f = lod[i] - static_cast<float>(l0);
-    F4 value = bilinear(pyramid[l0], face[i], s[i], t[i]);
-    if (f > 0.0f) value += (bilinear(pyramid[l0 + 1], face[i], s[i], t[i]) - value) * f;
+    const PaddedLevel& a = pyramid[l0[i]];
+    F4 value = bilerp(a.texels.data() + indexA[i], strideA[i], fxA[i], fyA[i]);
+    if (frac[i] > 0.0f) {
+      const PaddedLevel& b = pyramid[l0[i] + 1];
+      value += (bilerp(b.texels.data() + indexB[i], strideB[i], fxB[i], fyB[i]) - value) * frac[i];
+    }
     sum += value * weight[i];
   }
   return sum;
