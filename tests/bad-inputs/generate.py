@@ -150,6 +150,30 @@ dump("zero_area_light.gltf", model(TRI, extra=area_light(0, 10)))
 dump("zero_scale_light.gltf", model(TRI, extra=area_light(1, 10, scale=0)))
 dump("negative_intensity_light.gltf", model(TRI, extra=area_light(1, -5)))
 
+# Numbers JSON can hold but a float cannot (1e39 > 3.4e38): refused by path, not turned into
+# infinity on the way in.
+def set_factor(d):
+    d["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [1e39, 1, 1, 1]}}]
+    d["meshes"][0]["primitives"][0]["material"] = 0
+dump("factor_overflow.gltf", model(TRI, extra=set_factor))
+dump("scale_overflow.gltf", model(TRI, extra=lambda d: d["nodes"][0].update(scale=[1e39, 1, 1])))
+def emissive_strength(d):
+    d["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    d["materials"] = [{"emissiveFactor": [1, 1, 1], "extensions": {
+        "KHR_materials_emissive_strength": {"emissiveStrength": 1e39}}}]
+    d["meshes"][0]["primitives"][0]["material"] = 0
+dump("emissive_overflow.gltf", model(TRI, extra=emissive_strength))
+def punctual(intensity, color=(1, 1, 1)):
+    def f(d):
+        d["extensionsUsed"] = ["KHR_lights_punctual"]
+        d["extensions"] = {"KHR_lights_punctual": {"lights": [
+            {"type": "point", "intensity": intensity, "color": list(color)}]}}
+        d["nodes"].append({"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 1, 1]})
+        d["scenes"][0]["nodes"].append(1)
+    return f
+dump("punctual_overflow.gltf", model(TRI, extra=punctual(1e39)))
+dump("light_color_overflow.gltf", model(TRI, extra=punctual(1, color=(1, 1e39, 1))))
+
 # --- textures --------------------------------------------------------------------------------
 def textured(image):
     def f(d):
@@ -173,6 +197,8 @@ dump("ok.gltf", good)
 write("negative_resolution.json", json.dumps({"gltf": "ok.gltf", "resolution": [-4, 32]}))
 write("unknown_keys.json", json.dumps({"gltf": "ok.gltf", "colour": "blue", "resolution": [16, 16]}))
 write("wrong_type.json", json.dumps({"gltf": 42}))
+write("exposure_overflow.json", json.dumps({"gltf": "ok.gltf", "exposure": 1e39}))
+write("uniform_env_overflow.json", json.dumps({"gltf": "ok.gltf", "environment": {"uniform": [1e39, 0, 0]}}))
 
 # --- environments ----------------------------------------------------------------------------
 def pfm(name, w, h, pixel):

@@ -82,6 +82,15 @@ t2["extensionsUsed"] = ["EXT_lights_area"]
 t2["extensions"] = {"EXT_lights_area": {"lights": [{"type": "rect", "intensity": 5, "width": 1, "height": 0.5}]}}
 t2["nodes"][2]["extensions"] = {"EXT_lights_area": {"light": 0}}
 out("gltf", "sparse_area_light.glb", glb(t2, binary))
+# Numbers near and beyond float range (3.4e38): a factor, a light colour, a punctual light.
+t3 = json.loads(json.dumps(tri))
+t3["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [3.4e38, 1, 1e39, 1]},
+                    "emissiveFactor": [1, 1, 1]}]
+t3["extensionsUsed"] = ["KHR_lights_punctual"]
+t3["extensions"] = {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "intensity": 1e39, "color": [1, 3.5e38, 1], "spot": {"outerConeAngle": 1e39}}]}}
+t3["nodes"][2]["extensions"] = {"KHR_lights_punctual": {"light": 0}}
+out("gltf", "float_range.glb", glb(t3, binary))
 
 # --- scene JSON -------------------------------------------------------------------------------
 for p in ["cornell_box/cornell_box.json", "material_grid/material_grid.json", "dense/dense.json"]:
@@ -91,6 +100,9 @@ out("scene_json", "full.json", json.dumps({
     "camera": 0, "resolution": [64, 32], "exposure": -1, "toneMapper": "aces", "background": False,
     "progressive": {"frames": 16, "fd": 0.5, "occlusionDistance": 1, "lightSamples": 4,
                     "shadowMapSize": 256, "ssgi": False, "seed": 7}}))
+out("scene_json", "float_range.json", json.dumps({
+    "gltf": "model.glb", "environment": {"uniform": [1e39, 0, 3.4e38]}, "exposure": 1e39,
+    "progressive": {"occlusionDistance": 3.5e38, "fd": -1e39}}))
 
 # --- HDR images (first byte: 0 = readImageFromMemory, 1 = Penumbra's RGBE codec) --------------
 def rgbe_flat(w, h, px):

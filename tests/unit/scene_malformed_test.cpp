@@ -111,6 +111,26 @@ TEST(SceneGltfMalformed, IndexReferencesOutOfRange) {
   expectError(d.load(), "test.gltf", "materials[0].normalTexture.index");
 }
 
+TEST(SceneGltfMalformed, NumbersBeyondFloatRangeAreErrorsByPath) {
+  // JSON holds 1e39; a float cannot (it would become infinity inside the renderer).
+  GltfBuilder b = texturedTriangle();
+  b.doc["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {1.0, 1e39, 1.0, 1.0}}};
+  expectError(b.load(), "test.gltf",
+              "materials[0].pbrMetallicRoughness.baseColorFactor: must contain only finite "
+              "numbers within float range");
+  GltfBuilder c = texturedTriangle();
+  c.doc["materials"][0]["pbrMetallicRoughness"] = {{"roughnessFactor", -1e39}};
+  expectError(c.load(), "test.gltf",
+              "materials[0].pbrMetallicRoughness.roughnessFactor: must be a finite number");
+  GltfBuilder d = texturedTriangle();
+  d.doc["nodes"][0]["translation"] = {0.0, 3.5e38, 0.0};
+  expectError(d.load(), "test.gltf", "nodes[0].translation");
+  // The largest float itself is still a number (what it does to the scene is another matter).
+  GltfBuilder e = texturedTriangle();
+  e.doc["materials"][0]["emissiveFactor"] = {0.0, 0.0, 3.4e38};
+  EXPECT_TRUE(e.load().ok()) << e.load().message();
+}
+
 TEST(SceneGltfMalformed, VertexIndexOutOfRange) {
   GltfBuilder b;
   const int pos = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});

@@ -14,6 +14,12 @@ namespace penumbra::gltf {
 
 using json = nlohmann::json;
 
+// Every glTF number ends up in a float: a finite double beyond float's range would become
+// infinity there, so it is refused here like NaN.
+inline bool finiteFloat(double d) {
+  return std::isfinite(d) && std::fabs(d) <= static_cast<double>(std::numeric_limits<float>::max());
+}
+
 class Parser {
  public:
   bool failed() const { return !error_.empty(); }
@@ -113,8 +119,8 @@ class Parser {
       if (required) fail(path, std::string("missing required '") + key + "'");
       return def;
     }
-    if (!v->is_number() || !std::isfinite(v->get<double>())) {
-      fail(path + "." + key, "must be a finite number");
+    if (!v->is_number() || !finiteFloat(v->get<double>())) {
+      fail(path + "." + key, "must be a finite number within float range (|x| <= 3.4e38)");
       return def;
     }
     return v->get<double>();
@@ -155,8 +161,8 @@ class Parser {
     }
     for (int i = 0; i < N; ++i) {
       const json& e = (*v)[static_cast<size_t>(i)];
-      if (!e.is_number() || !std::isfinite(e.get<double>())) {
-        fail(path + "." + key, "must contain only finite numbers");
+      if (!e.is_number() || !finiteFloat(e.get<double>())) {
+        fail(path + "." + key, "must contain only finite numbers within float range (|x| <= 3.4e38)");
         return false;
       }
       out[i] = static_cast<float>(e.get<double>());
