@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -146,6 +148,12 @@ int main(int argc, char** argv) {
                "prefilter on the GPU through OpenGL ES 3.0 (falls back to the CPU "
                "with a warning when no context can be made)")
       ->excludes(cpuFlag);
+  std::string sunText = "auto";
+  app.add_option("--sun-threshold", sunText,
+                 "auto | off | LUMINANCE: the panorama's brightest compact region above it becomes "
+                 "a sun (a shadow-casting light in the packed file's manifest) and leaves the "
+                 "cube map; only the packed format can carry it")
+      ->capture_default_str();
   app.add_option("--threads", threads, "worker threads, 0 = all cores")->capture_default_str();
   app.add_flag("--extras", extras,
                "also write the previews, the DFG table and the SH (as --format all does)");
@@ -171,6 +179,20 @@ int main(int argc, char** argv) {
     fail("--lut-size must be between 1 and 4096, got " + std::to_string(lutSize));
     return 1;
   }
+  float sunThreshold = -1.0f;
+  if (sunText == "off") {
+    sunThreshold = 0.0f;
+  } else if (sunText != "auto") {
+    char* end = nullptr;
+    sunThreshold = std::strtof(sunText.c_str(), &end);
+    if (end == sunText.c_str() || *end != '\0' || !(sunThreshold > 0.0f) ||
+        !std::isfinite(sunThreshold)) {
+      fail("--sun-threshold must be auto, off or a positive luminance, got '" + sunText + "'");
+      return 1;
+    }
+  }
+  // Face files have no place for a sun: without the packed file, nothing is taken out.
+  if (format != "packed" && format != "all") sunThreshold = 0.0f;
   if (threads < 0) {
     fail("--threads must be 0 (all cores) or positive, got " + std::to_string(threads));
     return 1;
@@ -205,6 +227,7 @@ int main(int argc, char** argv) {
   options.faceSize = size;
   options.samples = samples;
   options.threads = threads;
+  options.sunThreshold = sunThreshold;
   options.progress = [&bar](float f) { bar(f); };
   // The GPU path when asked for, or by default where it is faster (a hardware GPU).
   std::unique_ptr<penumbra::GlContext> context;
@@ -230,6 +253,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   env->generator = std::string("penumbra-prefilter ") + penumbra::version();
+  if (!quiet && env->sun) {
+    const ibl::Sun& sun = *env->sun;
+    std::printf("sun: direction (%.4f, %.4f, %.4f), angular radius %.3f degrees, irradiance "
+                "(%.4g, %.4g, %.4g), threshold %.4g\n",
+                sun.direction.x, sun.direction.y, sun.direction.z,
+                sun.angularRadius * 57.29578f, sun.irradiance.x, sun.irradiance.y,
+                sun.irradiance.z, sun.threshold);
+  }
   const auto prefiltered = std::chrono::steady_clock::now();
   const auto seconds = [](auto from, auto to) {
     return std::chrono::duration<double>(to - from).count();

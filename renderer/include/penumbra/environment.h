@@ -16,6 +16,7 @@ namespace penumbra {
 struct EnvironmentLoadOptions {
   int faceSize = 128;  // for panoramas prefiltered on load
   int samples = 64;
+  float sunThreshold = -1.0f;  // RenderSettings::sunThreshold: -1 automatic, 0 off
   // Receives a warning when radiance had to be replaced (ibl::radianceVerdict); null: dropped.
   std::vector<std::string>* warnings = nullptr;
 };

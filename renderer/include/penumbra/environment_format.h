@@ -24,7 +24,8 @@ namespace penumbra {
 using PackedEnvironment = ibl::PrefilteredEnvironment;
 
 inline constexpr const char* kPackedFormatName = "penumbra-packed-environment";
-inline constexpr int kPackedFormatVersion = 1;
+// Version 2 adds the optional "sun" (ibl::Sun); files without a sun are written as version 1.
+inline constexpr int kPackedFormatVersion = 2;
 inline constexpr const char* kPackedHeaderKey = "PENUMBRA_ENV";
 
 // The manifest as one line of JSON (the value of the PENUMBRA_ENV header line).

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -136,6 +137,38 @@ inline constexpr int kDefaultSamples = 256;
 // Options shared by every prefilter back end. Only prefilterCpu exists today; a GPU back end
 // (prefilterGpu, in the GL library) is meant to take the same options and produce the same
 // Cubemap layout, so callers switch by function, not by data.
+// ---- The sun ----------------------------------------------------------------------------------
+
+// A distant disk light taken out of a panorama (extractSun): the renderer draws it as a
+// directional light whose shadow-map samples spread over the disk.
+struct Sun {
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit vector towards the sun (glTF world frame)
+  float angularRadius = 0.0f;             // radians
+  glm::vec3 irradiance{0.0f};  // RGB at normal incidence: the removed excess radiance x omega
+  float threshold = 0.0f;      // luminance the sun's pixels were clamped to
+};
+
+// Automatic extraction: a threshold of this many times the panorama's mean luminance; a sun
+// must be at most this large and carry at least this share of the panorama's light (a
+// softbox or a bright window stays in the environment).
+inline constexpr double kSunAutoMeanMultiple = 20.0;
+inline constexpr float kSunMaxAngularRadius = 0.1047f;  // 6 degrees
+inline constexpr double kSunMinShare = 0.05;
+
+struct SunOptions {
+  // Luminance above which the region around the brightest pixel becomes the sun. Negative:
+  // automatic (the rules above); 0: no extraction; positive: this threshold, no size or share
+  // limits.
+  float threshold = -1.0f;
+};
+
+// Finds the connected region above the threshold around the panorama's brightest pixel,
+// clamps its pixels to the threshold (hue kept) and returns their excess as a Sun: energy
+// conserved exactly, direction the energy-weighted centroid, radius from the energy-weighted
+// spread (sqrt(2 mean angle^2), exact for a uniform disk). nullopt: no sun (the panorama is
+// untouched).
+std::optional<Sun> extractSun(Image& panorama, const SunOptions& options = {});
+
 struct PrefilterOptions {
   int faceSize = kDefaultFaceSize;  // mip-0 face edge; a power of two
   // GGX samples per texel (a Fibonacci lattice) for mip 1 when it is importance sampled;
@@ -148,6 +181,8 @@ struct PrefilterOptions {
   // mips direct (from 32-pixel faces down with 256-pixel input) at a few tens of ms.
   int64_t directBudget = int64_t{64} << 20;
   int threads = 0;  // 0: all hardware threads; results do not depend on it
+  // Sun extraction before filtering (prefilterCpu / prefilterGpu): SunOptions::threshold.
+  float sunThreshold = -1.0f;
   // Called with the completed fraction in [0, 1], from worker threads but never concurrently.
   std::function<void(float)> progress;
 };
@@ -183,6 +218,7 @@ struct PrefilteredEnvironment {
   std::vector<float> roughness;  // perceptual roughness per mip
   ShCoefficients sh;             // radiance SH of the environment
   int samples = 0;               // samples per texel used for mips >= 1
+  std::optional<Sun> sun;        // taken out of the panorama before filtering, if any
   std::string generator;         // "penumbra-prefilter 0.1.0" or the like
 };
 

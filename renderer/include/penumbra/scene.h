@@ -140,6 +140,9 @@ struct Light {
   float range = 0.0f;             // punctual range (0 = infinite)
   float innerConeAngle = 0.0f;
   float outerConeAngle = 0.785398f;
+  // Directional: angular diameter in radians over which its shadow samples spread; 0 takes
+  // progressive.directionalAngle (an environment's sun carries its own).
+  float angularDiameter = 0.0f;
 
   bool isArea() const { return type == LightType::Rect || type == LightType::Disk; }
   float area() const {

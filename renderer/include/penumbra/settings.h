@@ -52,6 +52,10 @@ struct RenderSettings {
   ToneMapper toneMapper = ToneMapper::PbrNeutral;
   float environmentIntensity = 1.0f;
   float environmentRotation = 0.0f;  // degrees about +Y
+  // When a panorama is prefiltered on load: luminance above which its brightest compact region
+  // becomes a shadow-casting sun (ibl::extractSun). -1 automatic, 0 off. Packed files carry
+  // the sun penumbra-prefilter found.
+  float sunThreshold = -1.0f;
   bool showBackground = true;
   float backgroundBlur = 0.0f;  // 0 = sharp, 1 = the roughest prefiltered mip
   ProgressiveSettings progressive;

@@ -111,6 +111,7 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   const EnvironmentSpec spec = request.environment.value_or(job.sceneFile.environment);
   EnvironmentLoadOptions panorama = request.panorama;
   panorama.warnings = &job.warnings;
+  panorama.sunThreshold = job.settings.sunThreshold;
   auto env = resolveEnvironment(spec, job.scene, panorama, &job.environmentName);
   if (!env) return env.error();
   job.environment = std::move(*env);

@@ -73,6 +73,11 @@ const SettingInfo kSchema[] = {
     {"environmentRotation", "environment", "rotation", "--env-rotation", SettingType::Float, -360,
      360, false, false, false, true, "environment rotation about +Y in degrees",
      PN_FIELD(environmentRotation, float)},
+    {"sunThreshold", "environment", "sunThreshold", "--sun-threshold", SettingType::Float, -1,
+     1e9, false, false, false, true,
+     "a panorama's sun: luminance above which its brightest compact region becomes a "
+     "shadow-casting light (-1 automatic, 0 off)",
+     PN_FIELD(sunThreshold, float)},
     {"showBackground", "background", "show", "--no-background", SettingType::Bool, 0, 1, false,
      false, false, true, "draw the environment behind the scene (else black)",
      PN_BOOL(showBackground)},

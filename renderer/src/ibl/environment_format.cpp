@@ -4,7 +4,9 @@
 #include "penumbra/environment_format.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "image/image_internal.h"
@@ -61,7 +63,8 @@ Json manifest(const PackedEnvironment& env) {
   const ibl::Cubemap& cube = env.specular;
   Json j;
   j["format"] = kPackedFormatName;
-  j["version"] = kPackedFormatVersion;
+  // Version 2 adds the sun; a file without one stays version 1, readable by older readers.
+  j["version"] = env.sun ? kPackedFormatVersion : 1;
   j["encoding"] = "rgbe";
   j["width"] = ibl::kFaceCount * cube.size;
   j["height"] = packedHeight(cube.size, cube.mipCount());
@@ -88,6 +91,13 @@ Json manifest(const PackedEnvironment& env) {
   j["sh"] = {{"convention", "radiance"},
              {"irradiance", "E(n) = sum_l A_l sum_m L_lm Y_lm(n), A = (pi, 2pi/3, pi/4)"},
              {"coefficients", std::move(coefficients)}};
+  if (env.sun) {
+    const ibl::Sun& sun = *env.sun;
+    j["sun"] = {{"direction", {sun.direction.x, sun.direction.y, sun.direction.z}},
+                {"angularRadius", sun.angularRadius},
+                {"irradiance", {sun.irradiance.x, sun.irradiance.y, sun.irradiance.z}},
+                {"threshold", sun.threshold}};
+  }
   j["generator"] = env.generator;
   return j;
 }
@@ -241,6 +251,27 @@ Result<PackedEnvironment> readPackedEnvironmentFromMemory(std::span<const uint8_
     }
   }
   if (!getInt(j, "samples", env.samples)) env.samples = 0;
+  if (const Json* sun = field(j, "sun"); sun && version >= 2) {
+    ibl::Sun s;
+    const Json* d = field(*sun, "direction");
+    const Json* e = field(*sun, "irradiance");
+    const bool ok = d && d->is_array() && d->size() == 3 && e && e->is_array() &&
+                    e->size() == 3 && getFloat((*d)[0], s.direction.x) &&
+                    getFloat((*d)[1], s.direction.y) && getFloat((*d)[2], s.direction.z) &&
+                    getFloat((*e)[0], s.irradiance.x) && getFloat((*e)[1], s.irradiance.y) &&
+                    getFloat((*e)[2], s.irradiance.z) && field(*sun, "angularRadius") &&
+                    getFloat(*field(*sun, "angularRadius"), s.angularRadius);
+    const float len = glm::length(s.direction);
+    if (!ok || !(len > 0.5f && len < 2.0f) || !(s.angularRadius > 0.0f && s.angularRadius < 1.0f) ||
+        !(s.irradiance.x >= 0.0f && s.irradiance.y >= 0.0f && s.irradiance.z >= 0.0f) ||
+        !std::isfinite(s.irradiance.x + s.irradiance.y + s.irradiance.z)) {
+      return makeError(where + "manifest sun needs a direction, an angularRadius in (0, 1) "
+                               "radians and a finite, non-negative irradiance");
+    }
+    s.direction /= len;
+    if (const Json* t = field(*sun, "threshold")) getFloat(*t, s.threshold);
+    env.sun = s;
+  }
   if (const Json* g = field(j, "generator"); g && g->is_string())
     env.generator = g->get<std::string>();
 

@@ -415,7 +415,14 @@ Result<Cubemap> prefilterCubemapCpu(const Cubemap& source, const PrefilterOption
 Result<PrefilteredEnvironment> prefilterCpu(const Image& panorama,
                                             const PrefilterOptions& options) {
   PN_TRY(validate(options, options.faceSize));
-  auto source = panoramaToCubemap(panorama, options.faceSize, options.threads);
+  // The sun leaves the panorama before filtering: it is drawn as a light of its own.
+  Image withoutSun;
+  std::optional<Sun> sun;
+  if (options.sunThreshold != 0.0f) {
+    withoutSun = panorama;
+    sun = extractSun(withoutSun, {.threshold = options.sunThreshold});
+  }
+  auto source = panoramaToCubemap(sun ? withoutSun : panorama, options.faceSize, options.threads);
   if (!source) return source.error();
   auto specular = prefilterCubemapCpu(*source, options);
   if (!specular) return specular.error();
@@ -426,6 +433,7 @@ Result<PrefilteredEnvironment> prefilterCpu(const Image& panorama,
     env.roughness.push_back(roughnessForMip(m, env.specular.mipCount()));
   }
   env.samples = options.samples;
+  env.sun = sun;
   env.generator = std::string("penumbra ") + PENUMBRA_VERSION;
   return env;
 }

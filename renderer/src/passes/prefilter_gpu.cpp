@@ -30,8 +30,15 @@ bool gpuPrefilterIsFaster() {
   return true;
 }
 
-Result<PackedEnvironment> prefilterGpu(const Image& panorama,
-                                       const ibl::PrefilterOptions& options) {
+Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterOptions& options) {
+  // The sun leaves the panorama first, as in prefilterCpu.
+  Image withoutSun;
+  std::optional<ibl::Sun> sun;
+  if (options.sunThreshold != 0.0f) {
+    withoutSun = input;
+    sun = ibl::extractSun(withoutSun, {.threshold = options.sunThreshold});
+  }
+  const Image& panorama = sun ? withoutSun : input;
   if (panorama.width != 2 * panorama.height || panorama.height < 1) {
     return makeError("expected a 2:1 equirectangular panorama, got " +
                      std::to_string(panorama.width) + "x" + std::to_string(panorama.height));
@@ -160,6 +167,7 @@ Result<PackedEnvironment> prefilterGpu(const Image& panorama,
   for (int m = 0; m < mips; ++m) env.roughness.push_back(ibl::roughnessForMip(m, mips));
   env.sh = ibl::projectSh(env.specular, 0, options.threads);
   env.samples = options.samples;
+  env.sun = sun;
   env.generator = std::string("penumbra-prefilter ") + version() + " (GPU)";
   return env;
 }

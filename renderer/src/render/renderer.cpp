@@ -67,7 +67,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::FullscreenPass> tonemap;
   std::unique_ptr<GpuScene> scene;
-  std::vector<Light> lights;
+  std::vector<Light> lights;        // the scene's, then the environment's sun if it has one
+  std::vector<Light> sceneLights;
+  std::optional<ibl::Sun> sun;      // as stored with the environment (unrotated, unscaled)
   std::unique_ptr<GpuEnvironment> environment;
   Camera camera;
   bool hasCamera = false;
@@ -152,12 +154,30 @@ struct Renderer::Impl : progressive::FrameRenderer {
       shadows.emplace(std::move(*sp));
     }
     controller.setSettings(s.progressive);
+    if (sun && restartNeeded) setLights();  // the sun turns and scales with the environment
     updateDarkness();
     if (resize || restartNeeded) controller.invalidate();
     return {};
   }
 
+  // The environment's sun as a directional light, turned and scaled like the environment.
+  std::optional<Light> sunLight() const {
+    if (!sun) return std::nullopt;
+    const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation),
+                                     glm::vec3(0, 1, 0)));
+    Light l;
+    l.name = "environment sun";
+    l.type = LightType::Directional;
+    l.direction = -glm::normalize(turn * sun->direction);
+    l.color = sun->irradiance;
+    l.intensity = settings.environmentIntensity;
+    l.angularDiameter = 2.0f * sun->angularRadius;
+    return l;
+  }
+
   void setLights() {
+    lights = sceneLights;
+    if (auto s = sunLight()) lights.push_back(*s);
     std::vector<progressive::LightInfo> infos;
     for (const Light& l : lights) {
       progressive::LightInfo info;
@@ -183,7 +203,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
   // its angular size (the sample point on a disk), the others' is the light's own.
   glm::vec3 punctualDirection(const Light& l, glm::vec2 u) const {
     if (l.type != LightType::Directional) return l.direction;
-    const float radius = std::tan(glm::radians(0.5f * settings.progressive.directionalAngle));
+    const float diameter = l.angularDiameter > 0.0f
+                               ? l.angularDiameter
+                               : glm::radians(settings.progressive.directionalAngle);
+    const float radius = std::tan(0.5f * diameter);
     const glm::vec3 d = glm::normalize(l.direction);
     const glm::vec3 a = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     const glm::vec3 right = glm::normalize(glm::cross(a, d)), up = glm::cross(d, right);
@@ -333,7 +356,7 @@ Status Renderer::setScene(const Scene& scene) {
   auto gs = GpuScene::create(scene);
   if (!gs) return gs.error();
   impl_->scene = std::move(*gs);
-  impl_->lights = scene.lights;
+  impl_->sceneLights = scene.lights;
   impl_->setLights();
   impl_->controller.invalidate();
   return {};
@@ -347,6 +370,8 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   // The mean radiance is the first SH coefficient times Y00.
   const glm::vec3 mean = environment.sh.c[0] * 0.282095f;
   impl_->environmentMean = std::max(mean.r, std::max(mean.g, mean.b));
+  impl_->sun = environment.sun;
+  impl_->setLights();
   impl_->updateDarkness();
   impl_->controller.invalidate();
   return {};

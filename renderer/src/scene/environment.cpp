@@ -33,6 +33,7 @@ Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadO
   ibl::PrefilterOptions po;
   po.faceSize = options.faceSize;
   po.samples = options.samples;
+  po.sunThreshold = options.sunThreshold;
   auto env = ibl::prefilterCpu(image, po);
   if (!env) return makeError(name + ": " + env.message());
   return env;
