@@ -19,7 +19,32 @@ float sampleShadowMap(int index, vec3 coord) {
   return texture(uShadowMap3, coord);
 }
 
+// Point lights: cube maps rendered once per scene (passes/point_shadow_pass.h), compared
+// against the depth the face's 90-degree projection gives the receiver.
+uniform highp samplerCubeShadow uPointShadow0;
+uniform highp samplerCubeShadow uPointShadow1;
+uniform vec4 uPointShadowPos[PN_MAX_POINT_SHADOWS];     // xyz light position
+uniform vec4 uPointShadowParams[PN_MAX_POINT_SHADOWS];  // near, far, offset, offset per distance
+#if PN_MAX_POINT_SHADOWS != 2
+#error "shadows.glsl samples exactly two point-light cube maps: update it with kMaxPointShadows"
+#endif
+
+float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
+  vec4 q = uPointShadowParams[index];
+  vec3 light = uPointShadowPos[index].xyz;
+  float dist = length(worldPos - light);
+  vec3 v = worldPos + normal * (q.z + q.w * dist) - light;
+  // The face is the major axis; its perspective depth, as the depth buffer stored it.
+  float major = max(abs(v.x), max(abs(v.y), abs(v.z)));
+  float n = q.x, f = q.y;
+  float ndc = (f + n) / (f - n) - 2.0 * f * n / ((f - n) * max(major, n));
+  vec4 c = vec4(v, ndc * 0.5 + 0.5);
+  return index == 0 ? texture(uPointShadow0, c) : texture(uPointShadow1, c);
+}
+
+// index >= 0: shadow map `index`; -1: unshadowed; <= -2: point-light cube map -2 - index.
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
+  if (index <= -2) return pointShadowVisibility(-2 - index, worldPos, normal);
   if (index < 0) return 1.0;
   // Normal-offset bias grows with the texel footprint, which grows with distance.
   float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);

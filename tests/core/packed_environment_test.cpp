@@ -205,8 +205,8 @@ TEST(PackedEnvironmentTest, RejectsOtherFiles) {
   ASSERT_FALSE(badJson.ok());
   EXPECT_NE(badJson.message().find("JSON"), std::string::npos);
   nlohmann::json future = nlohmann::json::parse(*manifest);
-  future["version"] = 2;
-  auto newer = readPackedEnvironmentFromMemory(withManifest(future.dump(), 48, 12), "v2.hdr");
+  future["version"] = kPackedFormatVersion + 1;
+  auto newer = readPackedEnvironmentFromMemory(withManifest(future.dump(), 48, 12), "v3.hdr");
   ASSERT_FALSE(newer.ok());
   EXPECT_NE(newer.message().find("newer"), std::string::npos);
   nlohmann::json wrongType = nlohmann::json::parse(*manifest);

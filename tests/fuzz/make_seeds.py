@@ -90,7 +90,7 @@ t3["extensionsUsed"] = ["KHR_lights_punctual"]
 t3["extensions"] = {"KHR_lights_punctual": {"lights": [
     {"type": "spot", "intensity": 1e39, "color": [1, 3.5e38, 1], "spot": {"outerConeAngle": 1e39}}]}}
 t3["nodes"][2]["extensions"] = {"KHR_lights_punctual": {"light": 0}}
-out("gltf", "float_range.glb", glb(t3, binary))
+out("gltf", "bad-float-range.glb", glb(t3, binary))
 
 # --- scene JSON -------------------------------------------------------------------------------
 for p in ["cornell_box/cornell_box.json", "material_grid/material_grid.json", "dense/dense.json"]:
@@ -100,7 +100,7 @@ out("scene_json", "full.json", json.dumps({
     "camera": 0, "resolution": [64, 32], "exposure": -1, "toneMapper": "aces", "background": False,
     "progressive": {"frames": 16, "fd": 0.5, "occlusionDistance": 1, "lightSamples": 4,
                     "shadowMapSize": 256, "ssgi": False, "seed": 7}}))
-out("scene_json", "float_range.json", json.dumps({
+out("scene_json", "bad-float-range.json", json.dumps({
     "gltf": "model.glb", "environment": {"uniform": [1e39, 0, 3.4e38]}, "exposure": 1e39,
     "progressive": {"occlusionDistance": 3.5e38, "fd": -1e39}}))
 

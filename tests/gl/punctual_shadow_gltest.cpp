@@ -1,6 +1,6 @@
 // Shadows of KHR_lights_punctual lights: a box on a floor lit from the side by a directional
-// light and by a spot light casts its shadow where the light's geometry puts it; the lit floor
-// beside it and past the shadow's end stays lit. Point lights stay unshadowed.
+// light, a spot light and a point light casts its shadow where the light's geometry puts it;
+// the lit floor beside it stays lit. A point light's cube map shades every direction.
 #include <gtest/gtest.h>
 
 #include "passes/camera_math.h"
@@ -81,14 +81,49 @@ TEST_F(PunctualShadowGLTest, SpotLightCastsAShadow) {
   expectShadowBesideTheBox(renderWith(spot), "spot");
 }
 
-TEST_F(PunctualShadowGLTest, PointLightStaysUnshadowed) {
+TEST_F(PunctualShadowGLTest, PointLightCastsAShadow) {
   Light bulb;
   bulb.type = LightType::Point;
   bulb.position = {-2.0f, 2.5f, 0.0f};
   bulb.intensity = 20.0f;
-  const Render r = renderWith(bulb);
-  EXPECT_GT(r.at({1.0f, 0.0f, 0.0f}), 0.3f * r.at({1.0f, 0.0f, 1.3f}))
-      << "point lights have no shadow map yet (documented)";
+  // As the spot light: the box's top edge shades the floor to x = 2.17.
+  expectShadowBesideTheBox(renderWith(bulb), "point");
+}
+
+TEST_F(PunctualShadowGLTest, PointLightShadowsGoEveryWay) {
+  // A bulb at (0, 2, 0) between three unit boxes (centred at x = +-1.5 and z = +1.5): each
+  // shades the floor behind it (from 2 to 4 units out), through different cube faces, while
+  // the floor at the same distance between the boxes stays lit.
+  Scene s;
+  s.materials = {lambert(glm::vec3(0.8f)), lambert(glm::vec3(0.5f))};
+  s.meshes.push_back(quadMesh(10.0f, 0.0f, 0));
+  s.meshes.push_back(boxMesh({1.0f, 0.0f, -0.5f}, {2.0f, 1.0f, 0.5f}, 1));
+  s.meshes.push_back(boxMesh({-2.0f, 0.0f, -0.5f}, {-1.0f, 1.0f, 0.5f}, 1));
+  s.meshes.push_back(boxMesh({-0.5f, 0.0f, 1.0f}, {0.5f, 1.0f, 2.0f}, 1));
+  finishScene(s);
+  Light bulb;
+  bulb.type = LightType::Point;
+  bulb.position = {0.0f, 2.0f, 0.0f};
+  bulb.intensity = 20.0f;
+  s.lights.push_back(bulb);
+  const Camera cam = lookAtCamera({0.0f, 9.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  rs.progressive.frames = 8;
+  rs.progressive.directDelay = 0.0f;
+  rs.progressive.shadowMapSize = 512;
+  rs.progressive.screenSpaceIndirect = false;
+  auto img = renderRadiance(s, uniformEnvironment(glm::vec3(0.0f)), cam, rs);
+  ASSERT_TRUE(img.ok()) << img.message();
+  const Render r{std::move(*img), cameraMatrices(cam, kSize, kSize, {0, 0})};
+  (void)writeImage(outputDir() + "/punctual_point_all_ways.png", r.image);  // to look at
+  // Lit reference at the same distance from the bulb as the shadow points (3 units out).
+  const float lit = r.at({2.12f, 0.0f, -2.12f});
+  EXPECT_GT(lit, 0.05f);
+  for (const glm::vec3 p : {glm::vec3(3, 0, 0), glm::vec3(-3, 0, 0), glm::vec3(0, 0, 3)}) {
+    EXPECT_LT(r.at(p), 0.1f * lit) << "no shadow behind the box towards " << p.x << ", " << p.z;
+  }
+  EXPECT_GT(r.at({0.0f, 0.0f, -3.0f}), 0.8f * lit) << "the open side is lit";
 }
 
 }  // namespace

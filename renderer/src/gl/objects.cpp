@@ -208,6 +208,12 @@ void Framebuffer::attachDepth(const Texture2D& texture) {
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, texture.id(), 0);
 }
 
+void Framebuffer::attachDepth(const TextureCube& cube, int face) {
+  bind();
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face,
+                         cube.id(), 0);
+}
+
 void Framebuffer::attachDepth(const Renderbuffer& renderbuffer) {
   bind();
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,

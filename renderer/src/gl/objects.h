@@ -85,6 +85,8 @@ class Framebuffer {
   void attachColor(int index, const TextureCube& cube, int face, int level);
   void attachDepth(const Texture2D& texture);
   void attachDepth(const Renderbuffer& renderbuffer);
+  // One face (0..5, GL order) of a depth cube map: a point light's shadow.
+  void attachDepth(const TextureCube& cube, int face);
   // Enables draw buffers 0..count-1.
   void setDrawBuffers(int count);
   // Complete, or an error naming the status (e.g. GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT).

@@ -54,6 +54,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uViewportSize", glm::vec2(b.targets->width, b.targets->height));
   p.set("uSequence", b.sequence);
   b.shadows->bind(p, kUnitShadow);
+  b.pointShadows->bind(p, kUnitPointShadow);
   p.set("uEnvWeight", b.first ? 1.0f : 0.0f);
   p.set("uCoverageFrame", b.coverageFrame);
   p.set("uCoverageStream", 0);
@@ -101,13 +102,21 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   std::vector<glm::vec3> pcol;
   std::vector<glm::vec2> cone;
   std::vector<int> punctualShadow;
+  std::vector<glm::vec4> pointPos(kMaxPointShadows, glm::vec4(0.0f));
+  std::vector<glm::vec4> pointParams(kMaxPointShadows, glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
   for (const PunctualDraw& pd : b.punctual) {
     if (static_cast<int>(ppos.size()) >= kMaxPunctualLights) break;
     const Light& l = *pd.light;
     const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
     ppos.emplace_back(l.position, type);
     pdir.emplace_back(pd.direction, l.range);
-    punctualShadow.push_back(pd.shadowSlot);
+    if (pd.pointShadow >= 0) {
+      punctualShadow.push_back(-2 - pd.pointShadow);  // chunks/shadows.glsl's encoding
+      pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;
+      pointParams[static_cast<size_t>(pd.pointShadow)] = pd.pointView.params;
+    } else {
+      punctualShadow.push_back(pd.shadowSlot);
+    }
     pcol.push_back(l.color * l.intensity * pd.weight);
     const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
     const float scale = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
@@ -119,6 +128,8 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uPunctualColor", std::span<const glm::vec3>(pcol));
   p.set("uPunctualCone", std::span<const glm::vec2>(cone));
   p.set("uPunctualShadow", std::span<const int>(punctualShadow));
+  p.set("uPointShadowPos", std::span<const glm::vec4>(pointPos));
+  p.set("uPointShadowParams", std::span<const glm::vec4>(pointParams));
 }
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only

@@ -17,6 +17,7 @@
 #include "gpu/gpu_scene.h"
 #include "passes/camera_math.h"
 #include "passes/fullscreen_pass.h"
+#include "passes/point_shadow_pass.h"
 #include "passes/shadow_pass.h"
 #include "passes/targets.h"
 #include "penumbra/frame_plan.h"
@@ -39,6 +40,8 @@ struct PunctualDraw {
   glm::vec3 direction{0.0f};  // of travel, this sample's (directional lights are jittered)
   int shadowSlot = -1;        // its shadow map in the ShadowPass, or -1: unshadowed
   ShadowView view;
+  int pointShadow = -1;  // point lights: its cube map in the PointShadowPass, or -1
+  PointShadowView pointView;
 };
 
 struct LightingBatch {
@@ -46,6 +49,7 @@ struct LightingBatch {
   const GpuScene* scene = nullptr;  // may be null: background only
   const GpuEnvironment* environment = nullptr;
   const ShadowPass* shadows = nullptr;
+  const PointShadowPass* pointShadows = nullptr;
   const RenderSettings* settings = nullptr;
   const CameraMatrices* camera = nullptr;  // jittered
   glm::vec2 sequence{0.0f};                // the frame's low-discrepancy point

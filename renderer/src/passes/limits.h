@@ -1,7 +1,7 @@
 // Limits shared by the C++ passes and the shaders. The Renderer gives every shader these as
-// generated #defines (PN_MAX_SHADOW_MAPS, PN_MAX_PUNCTUAL_LIGHTS), so C++ and GLSL cannot
-// disagree; a shader that supports only one value checks it with #error. Also the texture
-// units every program uses.
+// generated #defines (PN_MAX_SHADOW_MAPS, PN_MAX_PUNCTUAL_LIGHTS, PN_MAX_POINT_SHADOWS), so C++ and
+// GLSL cannot disagree; a shader that supports only one value checks it with #error. Also the
+// texture units every program uses.
 #pragma once
 
 #include <string>
@@ -14,14 +14,18 @@ namespace penumbra::passes {
 // Shadow maps live at once: the area-light samples one lighting pass shades.
 inline constexpr int kMaxShadowMaps = 4;
 inline constexpr int kMaxPunctualLights = penumbra::kMaxPunctualLights;
+// Point lights with a cube shadow map (the first ones of the scene; the rest stay unshadowed).
+inline constexpr int kMaxPointShadows = 2;
 
 // Texture units: 0..4 material, then these (shadow maps from kUnitShadow on).
 inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
-                     kUnitShadow = 9;
+                     kUnitShadow = 9, kUnitPointShadow = kUnitShadow + kMaxShadowMaps;
+static_assert(kUnitPointShadow + kMaxPointShadows <= 16, "WebGL2 guarantees 16 texture units");
 
 inline gl::Defines limitDefines() {
   return {{"PN_MAX_SHADOW_MAPS", std::to_string(kMaxShadowMaps)},
-          {"PN_MAX_PUNCTUAL_LIGHTS", std::to_string(kMaxPunctualLights)}};
+          {"PN_MAX_PUNCTUAL_LIGHTS", std::to_string(kMaxPunctualLights)},
+          {"PN_MAX_POINT_SHADOWS", std::to_string(kMaxPointShadows)}};
 }
 
 }  // namespace penumbra::passes

@@ -116,6 +116,12 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView&
   framebuffers_[static_cast<size_t>(slot)].bind();
   gl::setViewport(0, 0, size_, size_);
   gl::clearDepth(1.0f);
+  drawShadowCasters(*program_, *alphaProgram_, scene, viewProj, coverageFrame, coverageStream);
+  return sv;
+}
+
+void drawShadowCasters(gl::Program& opaque, gl::Program& alphaProgram, const GpuScene& scene,
+                       const glm::mat4& viewProj, int coverageFrame, int coverageStream) {
   // Both faces cast: open meshes and single-sided walls must still block light.
   gl::apply({.depthTest = gl::DepthTest::Less,
              .depthWrite = true,
@@ -125,7 +131,7 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView&
              .polygonOffsetUnits = 2.0f});
   // Opaque surfaces first with the position-only program, then those that need their alpha.
   for (const bool alpha : {false, true}) {
-    gl::Program& program = alpha ? *alphaProgram_ : *program_;
+    gl::Program& program = alpha ? alphaProgram : opaque;
     bool used = false;
     for (const auto* list : {&scene.opaque(), &scene.blended()}) {
       for (const DrawItem& item : *list) {
@@ -143,7 +149,6 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView&
       }
     }
   }
-  return sv;
 }
 
 void ShadowPass::bind(const gl::Program& program, int firstUnit) const {

@@ -30,6 +30,11 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
 ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& sceneBounds,
                                     int mapSize);
 
+// Draws every shadow caster of the scene into the bound depth target with the given view:
+// opaque surfaces with `opaque` (positions only), MASK and BLEND ones with `alpha`.
+void drawShadowCasters(gl::Program& opaque, gl::Program& alpha, const GpuScene& scene,
+                       const glm::mat4& viewProj, int coverageFrame, int coverageStream);
+
 class ShadowPass {
  public:
   static Result<ShadowPass> create(gl::ShaderLibrary& library, int mapSize);

@@ -62,14 +62,15 @@ struct Renderer::Impl : progressive::FrameRenderer {
   progressive::Controller controller;
   std::optional<passes::RenderTargets> targets;
   std::optional<passes::ShadowPass> shadows;
+  std::optional<passes::PointShadowPass> pointShadows;
   std::optional<passes::Prepass> prepass;
   std::optional<passes::LightingPass> lighting;
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::FullscreenPass> tonemap;
   std::unique_ptr<GpuScene> scene;
-  std::vector<Light> lights;        // the scene's, then the environment's sun if it has one
+  std::vector<Light> lights;  // the scene's, then the environment's sun if it has one
   std::vector<Light> sceneLights;
-  std::optional<ibl::Sun> sun;      // as stored with the environment (unrotated, unscaled)
+  std::optional<ibl::Sun> sun;  // as stored with the environment (unrotated, unscaled)
   std::unique_ptr<GpuEnvironment> environment;
   Camera camera;
   bool hasCamera = false;
@@ -152,6 +153,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
       auto sp = passes::ShadowPass::create(library, s.progressive.shadowMapSize);
       if (!sp) return sp.error();
       shadows.emplace(std::move(*sp));
+      // Cube maps: six faces each, so at most 1024 pixels a face (24 MB a light at 1024).
+      auto pp =
+          passes::PointShadowPass::create(library, std::min(s.progressive.shadowMapSize, 1024));
+      if (!pp) return pp.error();
+      pointShadows.emplace(std::move(*pp));
     }
     controller.setSettings(s.progressive);
     if (sun && restartNeeded) setLights();  // the sun turns and scales with the environment
@@ -262,10 +268,19 @@ struct Renderer::Impl : progressive::FrameRenderer {
     constexpr size_t kBatch = passes::kMaxShadowMaps;
     int shadowStream = 0;  // each shadow map of the frame decides coverage on its own
     // Spot and directional samples (first batch only) take shadow maps before area samples;
-    // point lights would need six and stay unshadowed.
+    // the first point lights take cube maps, rendered once per scene.
     size_t punctualMaps = 0;
+    int pointMaps = 0;
     for (passes::PunctualDraw& pd : punctual) {
-      if (pd.light->type != LightType::Point && scene && punctualMaps < kBatch) {
+      if (!scene) break;
+      if (pd.light->type == LightType::Point) {
+        if (pointMaps >= passes::kMaxPointShadows) continue;
+        auto view = pointShadows->ensure(pointMaps, *scene, pd.light->position);
+        if (!view) return view.error();
+        pd.pointShadow = pointMaps++;
+        pd.pointView = *view;
+        endPass(&stats.shadowMs);
+      } else if (punctualMaps < kBatch) {
         pd.shadowSlot = static_cast<int>(punctualMaps++);
       }
     }
@@ -278,6 +293,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .scene = scene.get(),
           .environment = environment.get(),
           .shadows = &*shadows,
+          .pointShadows = &*pointShadows,
           .settings = &settings,
           .camera = &cm,
           .sequence = plan.sequence,
@@ -356,6 +372,7 @@ Status Renderer::setScene(const Scene& scene) {
   auto gs = GpuScene::create(scene);
   if (!gs) return gs.error();
   impl_->scene = std::move(*gs);
+  if (impl_->pointShadows) impl_->pointShadows->invalidate();
   impl_->sceneLights = scene.lights;
   impl_->setLights();
   impl_->controller.invalidate();
