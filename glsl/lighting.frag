@@ -41,6 +41,8 @@ uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range
 uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
 uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
 uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: unshadowed)
+uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction of travel,
+                                            // w tan(angular radius); 0 for the others
 
 out vec4 fragColor;
 
@@ -143,7 +145,22 @@ void main() {
     if (NoL <= 0.0) continue;
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
     vec3 e = uPunctualColor[i] * attenuation * NoL;
-    color += e * (diffuseColor * INV_PI + specularBrdf(n, v, l, f0, alpha, 1.0));
+    vec3 specular = specularBrdf(n, v, l, f0, alpha, 1.0);
+    float tanRadius = uPunctualDisk[i].w;
+    if (tanRadius > 0.0) {
+      // A disk at infinity (the sun): Karis' representative point, the direction within the
+      // disk closest to the reflection ray, with the lobe widened and renormalised as for
+      // area lights. The jittered sample direction above only places the shadow: its point
+      // highlight would converge to a scatter of dots on smooth surfaces, not to the disk.
+      vec3 centre = -uPunctualDisk[i].xyz;
+      vec3 r = reflect(-v, n);
+      vec3 toRay = dot(centre, r) * r - centre;
+      vec3 lr = normalize(centre + toRay * min(1.0, tanRadius / max(length(toRay), 1e-6)));
+      float widened = min(1.0, alpha + 0.5 * tanRadius);
+      float norm = (alpha / widened) * (alpha / widened);
+      specular = specularBrdf(n, v, lr, f0, alpha, norm) * saturate(dot(n, lr)) / NoL;
+    }
+    color += e * (diffuseColor * INV_PI + specular);
   }
 
 #endif

@@ -34,6 +34,9 @@ export interface Settings {
   environmentIntensity?: number;
   /** Degrees about +Y. */
   environmentRotation?: number;
+  /** A panorama's sun: luminance above which its brightest compact region becomes a
+   *  shadow-casting light; -1 automatic (default), 0 off. Applies when an environment loads. */
+  sunThreshold?: number;
   showBackground?: boolean;
   /** 0 = sharp, 1 = the roughest prefiltered mip. */
   backgroundBlur?: number;

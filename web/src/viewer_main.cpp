@@ -146,8 +146,11 @@ Result<Viewer*> viewer() {
   return gViewer.get();
 }
 
-Result<PackedEnvironment> loadEnvironmentFile(const std::string& path) {
-  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples});
+// The sun threshold in force when the file is loaded applies (settings.sunThreshold).
+Result<PackedEnvironment> loadEnvironmentFile(const std::string& path, float sunThreshold) {
+  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize,
+                                .samples = kPanoramaSamples,
+                                .sunThreshold = sunThreshold});
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -296,7 +299,7 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char*
     InFolder here(dir);
     if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
     const std::string path = file;
-    auto env = loadEnvironmentFile(path);
+    auto env = loadEnvironmentFile(path, (*v)->settings.sunThreshold);
     if (!env) return errorJson(env.message());
     if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
     (*v)->environment = std::move(*env);

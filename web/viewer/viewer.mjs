@@ -59,7 +59,7 @@ function renderProgress(viewer) {
 
 const form = $('panel');
 const numberFields = ['frames', 'fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
-                      'resolutionScale'];
+                      'resolutionScale', 'sunThreshold'];
 
 function fillPanel(settings) {
   for (const el of form.elements) {

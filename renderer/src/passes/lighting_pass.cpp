@@ -102,6 +102,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   std::vector<glm::vec3> pcol;
   std::vector<glm::vec2> cone;
   std::vector<int> punctualShadow;
+  std::vector<glm::vec4> disk;
   std::vector<glm::vec4> pointPos(kMaxPointShadows, glm::vec4(0.0f));
   std::vector<glm::vec4> pointParams(kMaxPointShadows, glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
   for (const PunctualDraw& pd : b.punctual) {
@@ -110,6 +111,11 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
     ppos.emplace_back(l.position, type);
     pdir.emplace_back(pd.direction, l.range);
+    const float diameter = l.angularDiameter > 0.0f
+                               ? l.angularDiameter
+                               : glm::radians(b.settings->progressive.directionalAngle);
+    disk.emplace_back(l.direction,
+                      l.type == LightType::Directional ? std::tan(0.5f * diameter) : 0.0f);
     if (pd.pointShadow >= 0) {
       punctualShadow.push_back(-2 - pd.pointShadow);  // chunks/shadows.glsl's encoding
       pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;
@@ -128,6 +134,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uPunctualColor", std::span<const glm::vec3>(pcol));
   p.set("uPunctualCone", std::span<const glm::vec2>(cone));
   p.set("uPunctualShadow", std::span<const int>(punctualShadow));
+  p.set("uPunctualDisk", std::span<const glm::vec4>(disk));
   p.set("uPointShadowPos", std::span<const glm::vec4>(pointPos));
   p.set("uPointShadowParams", std::span<const glm::vec4>(pointParams));
 }
