@@ -29,12 +29,13 @@ struct Render {
   }
 };
 
-Render renderWith(const Light& light) {
+Render renderWith(const Light& light, bool boxCastsShadow = true) {
   Scene s;
   s.materials = {lambert(glm::vec3(0.8f)), lambert(glm::vec3(0.5f))};
   s.meshes.push_back(quadMesh(5.0f, 0.0f, 0));
   s.meshes.push_back(boxMesh({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}, 1));
   finishScene(s);
+  s.instances[1].castsShadow = boxCastsShadow;
   s.lights.push_back(light);
   const Camera cam = lookAtCamera({0.0f, 7.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 40.0f);
   RenderSettings rs;
@@ -67,6 +68,17 @@ TEST_F(PunctualShadowGLTest, DirectionalLightCastsAShadow) {
   sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
   sun.intensity = 2.0f;
   expectShadowBesideTheBox(renderWith(sun), "directional");
+}
+
+TEST_F(PunctualShadowGLTest, LampProxiesCastNoShadow) {
+  // The same box as the visible face of a lamp (Instance::castsShadow false): the floor
+  // behind it is as bright as beside it.
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+  sun.intensity = 2.0f;
+  const Render r = renderWith(sun, false);
+  EXPECT_NEAR(r.at({1.0f, 0.0f, 0.0f}), r.at({1.0f, 0.0f, 1.3f}), 0.05f * r.at({1.0f, 0.0f, 1.3f}));
 }
 
 TEST_F(PunctualShadowGLTest, SpotLightCastsAShadow) {

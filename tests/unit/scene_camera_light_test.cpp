@@ -188,6 +188,22 @@ TEST(SceneGltfLight, AreaLightsRectAndDiskOnScaledRotatedNodes) {
   EXPECT_NEAR(d.area(), 3.14159265f, 1e-4f);
 }
 
+TEST(SceneGltfLight, LampProxiesCastNoShadow) {
+  // A node marked extras.area_light_proxy is the visible face of an area light: drawn, but
+  // blocking no light. Other nodes, and other extras, cast shadows as usual.
+  GltfBuilder b;
+  const int mesh = b.quadMesh();
+  b.scene({b.node({{"mesh", mesh}, {"name", "lamp"}, {"extras", {{"area_light_proxy", 0}}}}),
+           b.node({{"mesh", mesh}, {"name", "wall"}, {"extras", {{"note", "plain"}}}}),
+           b.node({{"mesh", mesh}, {"name", "floor"}})});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_EQ(scene->instances.size(), 3u);
+  for (const Instance& i : scene->instances) {
+    EXPECT_EQ(i.castsShadow, i.nodeName != "lamp") << i.nodeName;
+  }
+}
+
 TEST(SceneGltfLight, PunctualLights) {
   GltfBuilder b;
   b.useExtension("KHR_lights_punctual");

@@ -108,6 +108,10 @@ struct Instance {
   int mesh = -1;
   glm::mat4 world{1.0f};
   std::string nodeName;
+  // False for the visible face of an area light (a node with extras.area_light_proxy): the
+  // light itself is not geometry, so its stand-in blocks no other light (as path tracers treat
+  // lamp proxies). It is still seen by the camera.
+  bool castsShadow = true;
 };
 
 struct Camera {

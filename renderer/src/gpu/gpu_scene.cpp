@@ -127,6 +127,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       item.model = inst.world;
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
+      item.castsShadow = inst.castsShadow;
       Bounds wb;
       if (p->bounds.valid()) {
         for (int c = 0; c < 8; ++c) {

@@ -38,6 +38,7 @@ struct DrawItem {
   bool mirrored = false;  // negative determinant: front faces wind clockwise
   glm::vec3 center{0.0f};
   int layer = 0;  // index in the scene's draw order: the stochastic-coverage key (uLayer)
+  bool castsShadow = true;  // Instance::castsShadow
 };
 
 class GpuScene {

@@ -135,7 +135,7 @@ void drawShadowCasters(gl::Program& opaque, gl::Program& alphaProgram, const Gpu
     bool used = false;
     for (const auto* list : {&scene.opaque(), &scene.blended()}) {
       for (const DrawItem& item : *list) {
-        if (scene.needsAlpha(item) != alpha) continue;
+        if (!item.castsShadow || scene.needsAlpha(item) != alpha) continue;
         if (!used) {
           program.use();
           program.set("uViewProj", viewProj);

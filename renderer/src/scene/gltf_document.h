@@ -128,6 +128,7 @@ struct NodeDesc {
   int camera = -1;
   int areaLight = -1;      // EXT_lights_area
   int punctualLight = -1;  // KHR_lights_punctual
+  bool lightProxy = false;  // extras.area_light_proxy: the visible face of an area light
   glm::mat4 local{1.0f};
 };
 

@@ -145,7 +145,7 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
         m = static_cast<int>(meshOrder.size());
         meshOrder.push_back(node.mesh);
       }
-      scene.instances.push_back(Instance{m, world, node.name});
+      scene.instances.push_back(Instance{m, world, node.name, !node.lightProxy});
     }
     if (node.camera >= 0) gltf::addNodeCamera(doc, node, world, scene, ctx);
     gltf::addNodeLights(doc, node, world, scene, ctx);

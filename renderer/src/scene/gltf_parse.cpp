@@ -293,6 +293,9 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     n.mesh = p.index(o, "mesh", path, nMeshes, "meshes");
     n.camera = p.index(o, "camera", path, nCameras, "cameras");
+    if (const auto e = o.find("extras"); e != o.end() && e->is_object()) {
+      n.lightProxy = e->contains("area_light_proxy");
+    }
     float m[16];
     if (p.numbers<16>(o, "matrix", path, m)) {
       n.local = glm::mat4(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11],
