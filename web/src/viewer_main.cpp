@@ -63,7 +63,7 @@ struct Viewer {
   std::string environmentName = "black";
   bool environmentFromUser = false;  // set through the API, not by a scene file
   std::string lastError;
-  int lastParts = 0;  // parts of the frame the last pv_step_part worked on
+  FramePart lastPart;  // what the last pv_step_part did
 };
 
 std::unique_ptr<Viewer> gViewer;
@@ -430,7 +430,7 @@ EMSCRIPTEN_KEEPALIVE int pv_step_part() {
       (*v)->lastError = p.message();
       return -1;
     }
-    (*v)->lastParts = p->parts;
+    (*v)->lastPart = *p;
     return p->frame == 0 ? 0 : p->done ? 1 : 2;
   } catch (const std::exception& e) {
     if (gViewer) gViewer->lastError = std::string("internal error: ") + e.what();
@@ -448,8 +448,12 @@ EMSCRIPTEN_KEEPALIVE int pv_set_tiles(int tiles) {
   return gViewer->renderer->frameTiles();
 }
 
+// Which part (1-based; 1: the frame began with it) of how many parts the last pv_step_part drew.
+EMSCRIPTEN_KEEPALIVE int pv_last_part() {
+  return gViewer ? gViewer->lastPart.part : 0;
+}
 EMSCRIPTEN_KEEPALIVE int pv_last_parts() {
-  return gViewer ? gViewer->lastParts : 0;
+  return gViewer ? gViewer->lastPart.parts : 0;
 }
 
 EMSCRIPTEN_KEEPALIVE const char* pv_last_error() {
