@@ -207,8 +207,16 @@ TEST_F(FrameSplitGLTest, TileCountIsClampedToTheImageHeight) {
   ASSERT_TRUE(p.ok());
   // Frame 1 is environment only: lighting + accumulation, one band per row at most.
   EXPECT_EQ(p->parts, 5);
+  while (!p->done) p = r->stepPart();
+  // Unsplit, one part is the whole frame.
   r->setFrameTiles(0);
   EXPECT_EQ(r->frameTiles(), 1);
+  p = r->stepPart();
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->frame, 2);
+  EXPECT_TRUE(p->done);
+  EXPECT_EQ(p->part, 1);
+  EXPECT_EQ(p->parts, 1);
 }
 
 }  // namespace

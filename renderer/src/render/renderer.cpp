@@ -469,11 +469,17 @@ Result<FramePart> Renderer::stepPart() {
   gl::StateGuard guard(impl_->options.preserveHostState);
   auto r = impl_->controller.stepPart(*impl_);
   if (!r) return r.error();
+  // Unsplit, the frame's units ran as one part.
   const auto& p = impl_->pending;
+  const bool whole = p.tiles <= 1;
   return FramePart{.frame = r->frame,
                    .done = r->done,
-                   .part = r->frame > 0 ? static_cast<int>(p.next) : 0,
-                   .parts = r->frame > 0 ? static_cast<int>(p.units.size()) : 0};
+                   .part = r->frame == 0 ? 0
+                           : whole       ? 1
+                                         : static_cast<int>(p.next),
+                   .parts = r->frame == 0 ? 0
+                            : whole       ? 1
+                                          : static_cast<int>(p.units.size())};
 }
 void Renderer::setFrameTiles(int tiles) {
   impl_->frameTiles = std::clamp(tiles, 1, kMaxFrameTiles);
