@@ -16,8 +16,9 @@
 //   before any cost is known); chosen when the camera comes to rest (and on a new scene,
 //   canvas size or setting), and lowered at once when a still frame costs more than
 //   1.5 x maxSplit budgets.
-// - Motion scale: while moving, frame 1 over budget shrinks it by sqrt(budget / time) x 0.9
-//   (floor minMotionScale); under 40 % of the budget it grows by 15 %.
+// - Motion scale: when a gesture begins, at most the scale at which the last frame 1 predicts
+//   a frame 1 within the budget (x 0.9); while moving, frame 1 over budget shrinks it by
+//   sqrt(budget / time) x 0.9 (floor minMotionScale); under 40 % of the budget it grows by 15 %.
 
 export const ADAPT_DEFAULTS = {
   budgetMs: 12,             // time per animation frame spent on intermediate frames
@@ -145,6 +146,14 @@ export class Adaptation {
     if (lower >= current - 1e-9) return false;
     this.stillScale = lower;
     return true;
+  }
+
+  // A gesture begins: the first preview should already fit the budget.
+  startMotion(settings, canvasPixels) {
+    if (this.#frame1 === null || !(canvasPixels > 0)) return;
+    const fit = Math.sqrt(settings.budgetMs / (this.#frame1 * canvasPixels)) * 0.9;
+    const floor = Math.min(this.#opts.minMotionScale, settings.resolutionScale);
+    this.motionScale = Math.max(floor, Math.min(this.motionScale, fit));
   }
 
   // Frame 1 over budget while moving: shrink the area in proportion (with 10 % headroom); well

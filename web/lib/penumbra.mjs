@@ -509,6 +509,7 @@ export class Viewer {
     const js = this.#jsSettings;
     const canvasPixels = this.#fullSize[0] * this.#fullSize[1];
     if (moving) {
+      if (!this.#wasMoving) this.#adapt.startMotion(js, canvasPixels);
       this.#wasMoving = true;
     } else if (this.#wasMoving || this.#refit) {
       // At rest (again): choose the still resolution from what frames cost here.

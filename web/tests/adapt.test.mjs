@@ -130,6 +130,17 @@ test('frame 1 over budget while moving shrinks the motion scale (floor minMotion
   const still1 = a.motionScale;
   a.frameDone(s, { frame: 1, ms: 1000, renderPixels: 1e6, canvasPixels: 1e6, moving: false });
   assert.equal(a.motionScale, still1, 'frame 1 of a still image leaves it');
+
+  // A gesture starts from what the last frame 1 predicts: 48 ms at 1 Mpx -> 0.45 of the side.
+  const b = new Adaptation();
+  b.startMotion(s, 1e6);
+  assert.equal(b.motionScale, 1, 'nothing measured: unchanged');
+  b.frameDone(s, { frame: 1, ms: 48, renderPixels: 1e6, canvasPixels: 1e6, moving: false });
+  b.startMotion(s, 1e6);
+  assert.ok(Math.abs(b.motionScale - 0.5 * 0.9) < 1e-12, `${b.motionScale}`);
+  b.frameDone(s, { frame: 1, ms: 2, renderPixels: 1e6, canvasPixels: 1e6, moving: false });
+  b.startMotion(s, 1e6);
+  assert.ok(Math.abs(b.motionScale - 0.45) < 1e-12, 'it only lowers; growing is per frame');
 });
 
 test('the JS settings are checked with one-line messages', () => {

@@ -2,20 +2,22 @@
 // headless Chromium on SwiftShader (a CPU "GPU": slower than any phone, so the worst case).
 //
 //   node web/tests/bench_responsive.mjs [--frames 16] [--steps 20] [--only desktop|phone]
-//                                       [--mode before|after|both]
+//                                       [--mode before|after|both] [--query '&k=v'] [--label L]
 //
 // For a 1280x720 desktop window and a 390x844 phone (deviceScaleFactor 3, touch, isMobile),
-// each with adaptation off ("before": adaptive=0&split=1, whole frames at the capped pixel
-// ratio, what the viewer did before frame splitting and the adaptive still resolution) and on
-// ("after": the defaults), it loads the Cornell box (m frames), waits for frame 2 (a full
-// frame under way: the user starts to drag while the image converges), drags `steps` steps of
-// 8 CSS pixels 33 ms apart (mouse, or one finger through CDP touch events), and prints:
+// each with frame splitting and the adaptive still resolution off ("before":
+// adaptive=0&split=1, whole frames at full size) and on ("after": the defaults), it loads the
+// Cornell box (m frames), waits for frame 2 (a full frame under way: the user starts to drag
+// while the image converges), drags `steps` steps of 8 CSS pixels 33 ms apart (mouse, or one
+// finger through CDP touch events), and prints:
 // - first image: navigation start to the first presented frame;
 // - input -> frame: from each pointermove's timeStamp (when the browser got the input, so
 //   time the page was busy counts) to the next presented frame after its handler ran
 //   (median, 95th percentile, max);
 // - drag fps: frames presented per second between the first move and the release;
 // - converge: release to the 'converged' event, and the still render size.
+// To measure another build of the page (e.g. the main branch's), point PENUMBRA_WEB_DIST at
+// its web/dist and pass --mode after --label main (unknown URL parameters are ignored there).
 import { closeServer, dist, launch, recordConsole, serve, withTimeout } from './harness.mjs';
 
 const args = process.argv.slice(2);
@@ -35,6 +37,7 @@ const CONFIGS = [
                hasTouch: true } },
 ].filter((c) => only === 'both' || c.key === only);
 const MODE_QUERY = { before: '&adaptive=0&split=1', after: '' };
+const label = arg('label', '');  // names the build in the table (e.g. "main" for PENUMBRA_WEB_DIST)
 const extraQuery = arg('query', '');  // more viewer URL parameters, for experiments
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const pct = (xs, p) => {
@@ -48,6 +51,19 @@ async function run(server, config, mode) {
   try {
     const page = b.context.pages()[0] || (await b.context.newPage());
     recordConsole(page, lines);
+    // The time of the first progress entry (a presented frame), from navigation start; set up
+    // before the page runs so it works with any build of the page (PENUMBRA_WEB_DIST).
+    await page.addInitScript(() => {
+      let p;
+      Object.defineProperty(window, 'penumbraPage', { configurable: true, get: () => p, set: (v) => {
+        p = v;
+        const push = v.progressLog.push.bind(v.progressLog);
+        v.progressLog.push = (...a) => {
+          if (v.firstImageMs === undefined) v.firstImageMs = performance.now();
+          return push(...a);
+        };
+      } });
+    });
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html?frames=${frames}` +
                     `&panel=0${MODE_QUERY[mode]}${extraQuery}`, { timeout: 30_000 });
     await page.waitForFunction(() => window.penumbraPage?.ready || window.penumbraPage?.fatal,
@@ -131,11 +147,11 @@ try {
     for (const mode of modes) {
       const r = await run(server, config, mode);
       const ms = (x) => `${Math.round(x)}`;
-      console.log(`| ${config.name} | ${mode} | ${(r.firstImageMs / 1000).toFixed(2)} s | ` +
+      console.log(`| ${config.name} | ${label || mode} | ${(r.firstImageMs / 1000).toFixed(2)} s | ` +
                   `${ms(pct(r.latency, 0.5))} / ${ms(pct(r.latency, 0.95))} / ` +
                   `${ms(Math.max(...r.latency))} ms (${r.latency.length} of ${r.moves} moves) | ` +
                   `${r.fps.toFixed(1)} | ${(r.convergeMs / 1000).toFixed(1)} s | ${r.still} | ` +
-                  `${ms(r.frameMs)} ms in ${r.parts} part${r.parts > 1 ? 's' : ''} |`);
+                  `${ms(r.frameMs)} ms in ${r.parts ?? 1} part${r.parts > 1 ? 's' : ''} |`);
     }
   }
 } finally {

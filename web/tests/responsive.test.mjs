@@ -176,7 +176,8 @@ test('a frame slower than the budget is drawn in bands over several animation fr
   const { whole, split } = results;
   console.log(`# whole frames: longest animation frame ${whole.longest.toFixed(0)} ms, ` +
               `last frame ${whole.frameMs.toFixed(0)} ms; split ${split.splits}: longest ` +
-              `${split.longest.toFixed(0)} ms, up to ${split.parts} parts`);
+              `${split.longest.toFixed(0)} ms, last frame ${split.frameMs.toFixed(0)} ms in up to ` +
+              `${split.parts} parts`);
   assert.deepEqual(whole.splits, [1], 'split=1 draws whole frames');
   assert.ok(Math.max(...split.splits) > 1, `the budget split the frames: ${split.splits}`);
   assert.ok(split.parts > Math.max(...split.splits), 'shadow maps are parts of their own');

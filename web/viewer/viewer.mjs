@@ -219,8 +219,6 @@ async function main() {
   page.viewer = viewer;
   $('caps').textContent = `${viewer.info.context}\n${viewer.info.report}`.trim();
   viewer.on('progress', ({ frame, total }) => {
-    // Time to the first image, from navigation start (web/tests/bench_responsive.mjs).
-    if (page.firstImageMs === undefined) page.firstImageMs = performance.now();
     page.progressLog.push(frame);
     if (page.progressLog.length > 2000) page.progressLog.splice(0, 1000);
     page.total = total;
