@@ -245,5 +245,73 @@ TEST(ControllerTest, ARendererErrorStopsTheStepAndIsReturned) {
   EXPECT_EQ(c.framesDone(), 0);
 }
 
+// A renderer that draws every frame in three parts and records (frame, begin) per call.
+class ThreePartRenderer : public FrameRenderer {
+ public:
+  std::vector<std::pair<int, bool>> calls;
+  int left = 0;
+  Status renderFrame(const FramePlan& plan) override {
+    calls.emplace_back(plan.frame, true);
+    return {};
+  }
+  Result<bool> renderFramePart(const FramePlan& plan, bool begin) override {
+    if (begin) left = 3;
+    calls.emplace_back(plan.frame, begin);
+    return --left == 0;
+  }
+};
+
+TEST(ControllerTest, AFrameInPartsCountsOnlyWhenItsLastPartIsDone) {
+  ProgressiveSettings s;
+  s.frames = 3;
+  Controller c(s);
+  ThreePartRenderer r;
+  auto p = c.stepPart(r);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->frame, 1);
+  EXPECT_FALSE(p->done);
+  EXPECT_TRUE(c.inFrame());
+  EXPECT_EQ(c.framesDone(), 0);
+  ASSERT_TRUE(c.stepPart(r).ok());
+  p = c.stepPart(r);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->frame, 1);
+  EXPECT_TRUE(p->done);
+  EXPECT_FALSE(c.inFrame());
+  EXPECT_EQ(c.framesDone(), 1);
+  // Frame 2 part-way, then step() finishes it with its remaining parts.
+  ASSERT_TRUE(c.stepPart(r).ok());
+  ASSERT_EQ(*c.step(r), 2);
+  EXPECT_EQ(c.framesDone(), 2);
+  // A restart part-way drops the frame: the next part begins frame 1 again.
+  ASSERT_TRUE(c.stepPart(r).ok());
+  c.invalidate();
+  EXPECT_FALSE(c.inFrame());
+  p = c.stepPart(r);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->frame, 1);
+  const std::vector<std::pair<int, bool>> expected = {
+      {1, true}, {1, false}, {1, false}, {2, true}, {2, false}, {2, false}, {3, true}, {1, true}};
+  EXPECT_EQ(r.calls, expected);
+  // Whole frames through step() when none is in progress.
+  c.invalidate();
+  ASSERT_EQ(*c.step(r), 1);
+  EXPECT_EQ(r.calls.back(), std::make_pair(1, true));
+}
+
+TEST(ControllerTest, AFailedPartDropsTheFrame) {
+  Controller c;
+  ThreePartRenderer ok;
+  ASSERT_TRUE(c.stepPart(ok).ok());
+  MockRenderer failing;
+  EXPECT_CALL(failing, renderFrame(::testing::_))
+      .WillOnce(::testing::Return(Status(makeError("lost context"))));
+  auto p = c.stepPart(failing);  // the default renderFramePart draws the whole frame
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.message(), "lost context");
+  EXPECT_FALSE(c.inFrame());
+  EXPECT_EQ(c.framesDone(), 0);
+}
+
 }  // namespace
 }  // namespace penumbra::progressive

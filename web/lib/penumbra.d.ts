@@ -42,8 +42,15 @@ export interface Settings {
   backgroundBlur?: number;
   /** Milliseconds per animation frame spent on intermediate frames (default 12). */
   budgetMs?: number;
-  /** Render resolution / canvas resolution when the camera is still (0.1..2, default 1). */
+  /** Render resolution / canvas resolution when the camera is still (0.1..2, default 1): an
+   *  upper bound, which adaptiveResolution may lower. */
   resolutionScale?: number;
+  /** Lower the still resolution (down to minStillScale) when a frame costs more than maxSplit
+   *  budgets on this device (default true; false: always resolutionScale). */
+  adaptiveResolution?: boolean;
+  /** Most parts (bands of the image) a frame too slow for the budget is split into, drawn over
+   *  several animation frames (1..64, default 8; 1: never split). */
+  maxSplit?: number;
 }
 
 /** One row of the settings schema (the renderer's table, penumbra/settings.h). */
@@ -68,8 +75,12 @@ export interface CreateOptions extends Settings {
   controls?: boolean;
   /** Keep the drawing buffer at the canvas's CSS size x pixelRatio (default true). */
   autoResize?: boolean;
-  /** Default min(devicePixelRatio, 2). */
+  /** Default min(devicePixelRatio, maxPixelRatio). */
   pixelRatio?: number;
+  /** Caps devicePixelRatio when pixelRatio is not given (default 2). */
+  maxPixelRatio?: number;
+  /** Lowest resolution scale adaptiveResolution picks for the still image (default 0.5). */
+  minStillScale?: number;
   /** Lowest resolution scale used while the camera moves (default 0.25). */
   minMotionScale?: number;
   /** The camera counts as still this long after the last change (ms, default 200). */
@@ -105,15 +116,30 @@ export interface ViewerState {
   frame: number;
   total: number;
   converged: boolean;
-  /** Milliseconds of the last intermediate frame, and of the last frame 1. */
+  /** Milliseconds of the last intermediate frame (its parts' time), and of the last frame 1. */
   frameMs: number;
   frame1Ms: number;
+  /** Frames completed and parts drawn in the last animation frame that stepped. */
   stepsPerTick: number;
+  partsPerTick: number;
+  /** Bands of the frame being drawn (1: whole frames), and the parts of the last frame. */
+  split: number;
+  parts: number;
+  /** Measured cost of a still frame (median of the last three), null before one is measured. */
+  msPerMegapixel: number | null;
+  /** The still image's resolution scale (resolutionScale, or lower by adaptiveResolution). */
+  stillScale: number;
+  /** Canvas pixels per CSS pixel in effect. */
+  pixelRatio: number;
+  /** performance.now() of the last restart, and the time from it to convergence. */
+  restartedAt: number;
   convergedMs: number;
   lost: boolean;
   moving: boolean;
   renderWidth: number;
   renderHeight: number;
+  /** The drawing buffer: CSS size x pixelRatio, or the render size while a moving preview is
+   *  shown (the browser scales it up). */
   canvasWidth: number;
   canvasHeight: number;
   motionScale: number;

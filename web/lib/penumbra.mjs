@@ -5,18 +5,18 @@
 //   await viewer.loadScene('assets/cornell_box/cornell_box.json');
 //   viewer.on('progress', ({ frame, total }) => ...);
 //
-// The wasm module (penumbra_viewer.js/.wasm, built from the same C++ and GLSL as the native
-// renderer) draws one cheap intermediate frame per step and accumulates. This file owns the
-// frame loop: on each requestAnimationFrame it runs as many steps as fit the time budget,
-// timing each with a 1-pixel read-back (glFinish does not block in WebGL), then tone-maps the
-// accumulation into the canvas. A camera or settings change restarts accumulation at frame 1
-// (environment only, cheap); while the camera moves and frame 1 alone exceeds the budget, the
-// render resolution drops, and it comes back once the camera is still.
+// The wasm module (penumbra_viewer.js/.wasm, the same C++ and GLSL as the native renderer)
+// draws cheap intermediate frames and accumulates them. This file owns the frame loop: on each
+// requestAnimationFrame it draws as many frames, or parts of a slow frame, as fit the time
+// budget, timing each with a 1-pixel read-back (glFinish does not block in WebGL), then
+// tone-maps the accumulation into the canvas. A camera change restarts at frame 1; adapt.mjs
+// chooses the resolution (lower while moving) and the split from measured costs.
 //
 // Every method that can fail returns a promise that rejects with a PenumbraError whose message
 // is the one-line C++ message; nothing throws out of the frame loop or the event handlers
 // (failures there go to the 'error' event). docs/web.md documents the API.
 import createPenumbraViewerModule from './penumbra_viewer.js';
+import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
 
@@ -24,24 +24,15 @@ export { PenumbraError };
 export const version = '0.1.0';
 
 const DEFAULTS = {
-  budgetMs: 12,          // time per animation frame spent on intermediate frames
-  resolutionScale: 1,    // render resolution / canvas resolution when the camera is still
-  minMotionScale: 0.25,  // the lowest resolution scale used while the camera moves
+  ...ADAPT_DEFAULTS,     // budgetMs, resolutionScale, adaptiveResolution, maxSplit, ...
   stillMs: 200,          // the camera counts as still this long after the last change
   forceHalfFloat: false, // accumulate in RGBA16F (the weak-device path) even where RGBA32F works
   controls: true,        // orbit/pan/zoom with mouse and touch
   autoResize: true,      // keep the canvas's drawing buffer at its CSS size x pixelRatio
-  pixelRatio: undefined, // default: min(devicePixelRatio, 2)
+  pixelRatio: undefined, // default: min(devicePixelRatio, maxPixelRatio)
 };
 // The renderer's settings come from the settings schema in the wasm module (one table in C++,
-// penumbra/settings.h); these two are the JS side's own.
-const JS_SCHEMA = [
-  { key: 'budgetMs', type: 'number', min: 0, max: 1000, default: DEFAULTS.budgetMs, viewer: true,
-    range: '(0, 1000]', help: 'milliseconds per animation frame spent on intermediate frames' },
-  { key: 'resolutionScale', type: 'number', min: 0.1, max: 2, default: DEFAULTS.resolutionScale,
-    viewer: true, range: '[0.1, 2]',
-    help: 'render resolution / canvas resolution when the camera is still' },
-];
+// penumbra/settings.h); JS_SCHEMA (adapt.mjs) holds the JS side's own.
 const JS_SETTINGS = new Set(JS_SCHEMA.map((e) => e.key));
 
 let canvasIds = 0;
@@ -51,13 +42,16 @@ export class Viewer {
   #mod; #pv; #canvas; #opts; #listeners = new Map();
   #schema = []; #wasmKeys = new Set();  // the settings schema; keys setSettings() sends to wasm
   #overrides = {};             // wasm settings the user set (re-applied after loads/restores)
-  #jsSettings;                 // budgetMs, resolutionScale
+  #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
-  #motionScale = 1; #renderSize = [0, 0]; #needsPresent = true;
+  #adapt; #renderSize = [0, 0]; #fullSize = [0, 0]; #needsPresent = true;
+  #haveImage = false;          // a complete frame at the current render size exists
+  #frameWorkMs = 0; #tiles = 0;  // time of the frame's parts so far; bands set in wasm
+  #wasMoving = false; #refit = true;  // choose the still scale at the next still tick
   #raf = 0; #running = false; #disposed = false; #lost = false; #dead = null;
   #sceneInfo = null; #report = ''; #context = '';
   #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, stepsPerTick: 0,
-             restartedAt: 0, convergedMs: 0 };
+             partsPerTick: 0, split: 1, parts: 1, restartedAt: 0, convergedMs: 0 };
 
   static async create(canvas, options = {}) {
     if (!canvas || typeof canvas.getContext !== 'function') {
@@ -106,7 +100,10 @@ export class Viewer {
     this.#mod = mod;
     this.#canvas = canvas;
     this.#opts = opts;
-    this.#jsSettings = { budgetMs: opts.budgetMs, resolutionScale: opts.resolutionScale };
+    this.#jsSettings = { budgetMs: opts.budgetMs, resolutionScale: opts.resolutionScale,
+                         adaptiveResolution: opts.adaptiveResolution, maxSplit: opts.maxSplit };
+    this.#adapt = new Adaptation({ minStillScale: opts.minStillScale,
+                                   minMotionScale: opts.minMotionScale });
     const s = 'string', n = 'number';
     const w = (name, ret, args) => mod.cwrap(name, ret, args);
     this.#pv = {
@@ -121,6 +118,8 @@ export class Viewer {
       pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),
       pv_reset_camera: w('pv_reset_camera', s, []),
       pv_step: w('pv_step', n, []), pv_last_error: w('pv_last_error', s, []),
+      pv_step_part: w('pv_step_part', n, []), pv_set_tiles: w('pv_set_tiles', n, [n]),
+      pv_last_part: w('pv_last_part', n, []), pv_last_parts: w('pv_last_parts', n, []),
       pv_sync: w('pv_sync', null, []), pv_present: w('pv_present', s, [n, n]),
       pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
       pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
@@ -136,9 +135,13 @@ export class Viewer {
   get info() { return { context: this.#context, report: this.#report, scene: this.#sceneInfo }; }
   // A snapshot for progress displays and tests.
   get state() {
+    const cost = this.#adapt.msPerPixel();
     return { ...this.#stats, lost: this.#lost, renderWidth: this.#renderSize[0],
              renderHeight: this.#renderSize[1], canvasWidth: this.#canvas.width,
-             canvasHeight: this.#canvas.height, motionScale: this.#motionScale,
+             canvasHeight: this.#canvas.height, motionScale: this.#adapt.motionScale,
+             stillScale: this.#adapt.currentStillScale(this.#jsSettings),
+             pixelRatio: this.#pixelRatio(),
+             msPerMegapixel: cost === null ? null : cost * 1e6,
              moving: this.#isMoving(performance.now()) };
   }
   // Every setting setSettings() takes: {key, type, min, max, default, range, help}, from the
@@ -190,6 +193,8 @@ export class Viewer {
     this.#call('pv_set_settings', JSON.stringify(this.#overrides));
     this.#orbit = OrbitCamera.fromCamera(info.camera, info.bounds);
     this.#cameraDirty = false;
+    this.#adapt.reset();  // another scene costs differently: measure again
+    this.#refit = true;
     this.#restarted();
     return this.#sceneInfo;
   }
@@ -265,15 +270,14 @@ export class Viewer {
       else if (JS_SETTINGS.has(k)) js[k] = v;
       else throw new PenumbraError(`unknown setting '${k}'`);
     }
-    if ('budgetMs' in js && !(js.budgetMs > 0 && js.budgetMs <= 1000)) {
-      throw new PenumbraError('setting \'budgetMs\' must be in (0, 1000]');
-    }
-    if ('resolutionScale' in js && !(js.resolutionScale >= 0.1 && js.resolutionScale <= 2)) {
-      throw new PenumbraError('setting \'resolutionScale\' must be in [0.1, 2]');
+    for (const [k, v] of Object.entries(js)) {
+      const bad = checkJsSetting(k, v);
+      if (bad) throw new PenumbraError(bad);
     }
     if (!this.#lost && Object.keys(wasm).length) this.#call('pv_set_settings', JSON.stringify(wasm));
     Object.assign(this.#overrides, wasm);
     Object.assign(this.#jsSettings, js);
+    if (Object.keys(js).length) this.#refit = true;  // budget or bounds changed: choose again
     this.#needsPresent = true;  // exposure and tone mapping change the display without a restart
     return this.#lost ? { ...this.#overrides, ...this.#jsSettings } : this.settings;
   }
@@ -378,6 +382,10 @@ export class Viewer {
       this.#lost = false;
       this.#call('pv_set_settings', JSON.stringify(this.#overrides));
       this.#renderSize = [0, 0];  // the new renderer starts at its default size
+      this.#tiles = 0;            // and with whole frames
+      this.#haveImage = false;
+      this.#adapt.reset();
+      this.#refit = true;
       this.#restarted();
       this.#emit('contextrestored', {});
     } catch (err) {
@@ -438,7 +446,7 @@ export class Viewer {
   #restarted() {
     this.#stats.restartedAt = performance.now();
     this.#stats.converged = false;
-    this.#needsPresent = true;
+    this.#frameWorkMs = 0;  // wasm drops a frame in progress on any restart
   }
 
   // Moving = the camera changed within stillMs. A finger or button held still does not count:
@@ -447,17 +455,37 @@ export class Viewer {
     return now - this.#lastChange < this.#opts.stillMs;
   }
 
+  // The drawing buffer's size at rest: CSS size x pixel ratio (autoResize), else the host's.
   #syncCanvasSize() {
     const c = this.#canvas;
-    if (!this.#opts.autoResize || !c.clientWidth || !c.clientHeight) return;
-    const ratio = this.#opts.pixelRatio ?? Math.min(globalThis.devicePixelRatio || 1, 2);
-    const w = Math.max(1, Math.round(c.clientWidth * ratio));
-    const h = Math.max(1, Math.round(c.clientHeight * ratio));
-    if (c.width !== w || c.height !== h) {
-      c.width = w;  // clears the drawing buffer: present again
-      c.height = h;
-      this.#needsPresent = true;
+    let size = [c.width, c.height];
+    if (this.#opts.autoResize && c.clientWidth && c.clientHeight) {
+      const ratio = this.#pixelRatio();
+      size = [Math.max(1, Math.round(c.clientWidth * ratio)),
+              Math.max(1, Math.round(c.clientHeight * ratio))];
     }
+    if (size[0] !== this.#fullSize[0] || size[1] !== this.#fullSize[1]) {
+      this.#fullSize = size;
+      this.#refit = true;  // another pixel count: choose the still scale again
+    }
+  }
+
+  // Tone-maps the accumulation into the canvas. A moving preview gets a drawing buffer of its
+  // own size, scaled up by the browser (a phone's full buffer costs more to fill and composite
+  // than the preview's frame); resized only here, with an image to draw (a resize clears it).
+  #present(preview) {
+    const c = this.#canvas;
+    const [w, h] = preview && this.#opts.autoResize ? this.#renderSize : this.#fullSize;
+    if (this.#opts.autoResize && (c.width !== w || c.height !== h)) {
+      c.width = w;
+      c.height = h;
+    }
+    this.#call('pv_present', c.width, c.height);
+    this.#needsPresent = false;
+  }
+
+  #pixelRatio() {
+    return effectivePixelRatio(this.#opts, globalThis.devicePixelRatio);
   }
 
   #tick = () => {
@@ -478,15 +506,26 @@ export class Viewer {
     this.#syncCanvasSize();
     const now = performance.now();
     const moving = this.#isMoving(now);
-    const budget = this.#jsSettings.budgetMs;
-    let scale = this.#jsSettings.resolutionScale;
-    if (moving) scale = Math.min(scale, this.#motionScale);
-    const reduced = scale < this.#jsSettings.resolutionScale;
-    const w = Math.max(1, Math.round(this.#canvas.width * scale));
-    const h = Math.max(1, Math.round(this.#canvas.height * scale));
+    const js = this.#jsSettings;
+    const canvasPixels = this.#fullSize[0] * this.#fullSize[1];
+    if (moving) {
+      if (!this.#wasMoving) this.#adapt.startMotion(js, canvasPixels);
+      this.#wasMoving = true;
+    } else if (this.#wasMoving || this.#refit) {
+      // At rest (again): choose the still resolution from what frames cost here.
+      this.#wasMoving = false;
+      this.#refit = false;
+      this.#adapt.refit(js, canvasPixels);
+    }
+    const stillScale = this.#adapt.currentStillScale(js);
+    const scale = moving ? Math.min(stillScale, this.#adapt.motionScale) : stillScale;
+    const preview = scale < stillScale;  // a moving preview, not the image to converge
+    const w = Math.max(1, Math.round(this.#fullSize[0] * scale));
+    const h = Math.max(1, Math.round(this.#fullSize[1] * scale));
     if (w !== this.#renderSize[0] || h !== this.#renderSize[1]) {
       this.#call('pv_set_settings', JSON.stringify({ width: w, height: h }));
       this.#renderSize = [w, h];
+      this.#haveImage = false;  // new targets: nothing to show until a frame completes
       this.#restarted();
     }
     if (this.#cameraDirty && this.#orbit) {
@@ -497,55 +536,68 @@ export class Viewer {
     }
     if (!this.#sceneInfo) return;  // nothing to show yet
 
-    let steps = 0;
+    let parts = 0, frames = 0;
     if (!this.#pv.pv_converged()) {
       const start = performance.now();
       let prev = start;
       for (;;) {
-        const f = this.#pv.pv_step();
-        if (f < 0) throw new PenumbraError(this.#lastError());
-        if (f === 0) break;
+        this.#setTiles(moving);  // wasm applies it when a frame begins
+        const r = this.#pv.pv_step_part();
+        if (r < 0) throw new PenumbraError(this.#lastError());
+        if (r === 0) break;
         this.#pv.pv_sync();
         const t = performance.now();
         const dt = t - prev;
         prev = t;
-        steps++;
-        this.#stats.frameMs = dt;
-        if (f === 1) {
-          this.#stats.frame1Ms = dt;
-          if (moving) this.#adaptMotionScale(dt, budget);
+        parts++;
+        if (this.#pv.pv_last_part() === 1) this.#frameWorkMs = 0;  // a frame began
+        this.#frameWorkMs += dt;
+        if (r === 1) {
+          frames++;
+          // The still scale went down: the next tick restarts at the new size.
+          if (this.#frameCompleted(moving, canvasPixels)) break;
         }
-        // Stop when the next frame, if it costs what this one did, would overrun the budget.
-        if (this.#pv.pv_converged() || (t - start) + dt > budget) break;
+        // Stop when the next part, if it costs what this one did, would overrun the budget.
+        if (this.#pv.pv_converged() || (t - start) + dt > js.budgetMs) break;
       }
-      this.#needsPresent = true;
+      this.#stats.partsPerTick = parts;
     }
-    if (this.#needsPresent) {
-      this.#call('pv_present', this.#canvas.width, this.#canvas.height);
-      this.#needsPresent = false;
-    }
-    if (steps > 0) {
-      const frame = this.#pv.pv_frames_done(), total = this.#pv.pv_total_frames();
-      Object.assign(this.#stats, { frame, total, stepsPerTick: steps });
-      this.#emit('progress', { frame, total });
-      // A reduced-resolution image is a preview, not the result: no 'converged' for it.
-      if (this.#pv.pv_converged() && !this.#stats.converged && !reduced) {
-        this.#stats.converged = true;
-        this.#stats.convergedMs = performance.now() - this.#stats.restartedAt;
-        this.#emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
-      }
+    // Only complete frames are shown: a frame in progress leaves the previous mean in place.
+    if ((frames > 0 || this.#needsPresent) && this.#haveImage) this.#present(preview);
+    if (frames === 0) return;
+    const frame = this.#pv.pv_frames_done(), total = this.#pv.pv_total_frames();
+    Object.assign(this.#stats, { frame, total, stepsPerTick: frames });
+    this.#emit('progress', { frame, total });
+    // A moving preview is not the result: no 'converged' for it.
+    if (this.#pv.pv_converged() && !this.#stats.converged && !preview) {
+      this.#stats.converged = true;
+      this.#stats.convergedMs = performance.now() - this.#stats.restartedAt;
+      this.#emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
     }
   }
 
-  // Frame 1 over budget while moving: shrink the area in proportion (with 10% headroom); well
-  // under budget: grow back. Learned across gestures; the still image always uses full scale.
-  #adaptMotionScale(frame1Ms, budget) {
-    const floor = Math.min(this.#opts.minMotionScale, this.#jsSettings.resolutionScale);
-    if (frame1Ms > budget) {
-      this.#motionScale = Math.max(floor, this.#motionScale * Math.sqrt(budget / frame1Ms) * 0.9);
-    } else if (frame1Ms < budget * 0.4) {
-      this.#motionScale = Math.min(1, this.#motionScale * 1.15);
-    }
+  // Bands for the next frame to begin (adapt.mjs: predicted cost / budget, at most maxSplit;
+  // frame 1 whole while moving). Set in wasm only when it changes.
+  #setTiles(moving) {
+    const [w, h] = this.#renderSize;
+    const k = this.#adapt.tiles(this.#jsSettings, w * h,
+                                { moving, frameOne: this.#pv.pv_frames_done() === 0 });
+    if (k !== this.#tiles) this.#tiles = this.#pv.pv_set_tiles(k);
+    this.#stats.split = this.#tiles;
+  }
+
+  // A frame completed: record its cost, learn from it. True when the still scale went down.
+  #frameCompleted(moving, canvasPixels) {
+    const ms = this.#frameWorkMs;
+    this.#frameWorkMs = 0;
+    this.#haveImage = true;
+    const frame = this.#pv.pv_frames_done();
+    const [w, h] = this.#renderSize;
+    this.#stats.frameMs = ms;
+    this.#stats.parts = this.#pv.pv_last_parts();
+    if (frame === 1) this.#stats.frame1Ms = ms;
+    return this.#adapt.frameDone(this.#jsSettings,
+                                 { frame, ms, renderPixels: w * h, canvasPixels, moving });
   }
 }
 

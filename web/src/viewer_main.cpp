@@ -4,7 +4,9 @@
 // in-memory file system (pv_write_file), so the renderer's ordinary file loaders resolve a
 // .gltf's external buffers and a scene file's glTF and environment exactly as natively. JS owns
 // the frame loop: pv_step draws one intermediate frame, pv_sync waits for the GPU (glFinish does
-// not block in WebGL), pv_present tone-maps the accumulation into the canvas.
+// not block in WebGL), pv_present tone-maps the accumulation into the canvas. pv_step_part
+// draws one part of a frame split into bands (pv_set_tiles), for frames too slow for one
+// animation frame.
 //
 // Every export returns plainly (numbers, or JSON text with "error" on failure) inside a
 // try/catch: a C++ exception or a Result error must never cross into JS as a throw or an abort.
@@ -61,6 +63,7 @@ struct Viewer {
   std::string environmentName = "black";
   bool environmentFromUser = false;  // set through the API, not by a scene file
   std::string lastError;
+  FramePart lastPart;  // what the last pv_step_part did
 };
 
 std::unique_ptr<Viewer> gViewer;
@@ -414,6 +417,46 @@ EMSCRIPTEN_KEEPALIVE int pv_step() {
     if (gViewer) gViewer->lastError = "internal error: unknown exception";
   }
   return -1;
+}
+
+// Draws the next part of the next frame (Renderer::stepPart): 1 when that completed the frame,
+// 2 when the frame has parts left, 0 once converged, -1 on error (pv_last_error).
+EMSCRIPTEN_KEEPALIVE int pv_step_part() {
+  try {
+    auto v = viewer();
+    if (!v) {
+      if (gViewer) gViewer->lastError = v.message();
+      return -1;
+    }
+    auto p = (*v)->renderer->stepPart();
+    if (!p) {
+      (*v)->lastError = p.message();
+      return -1;
+    }
+    (*v)->lastPart = *p;
+    return p->frame == 0 ? 0 : p->done ? 1 : 2;
+  } catch (const std::exception& e) {
+    if (gViewer) gViewer->lastError = std::string("internal error: ") + e.what();
+  } catch (...) {
+    if (gViewer) gViewer->lastError = "internal error: unknown exception";
+  }
+  return -1;
+}
+
+// Bands of the frames pv_step_part begins from now on; returns the count in effect (clamped to
+// 1..64), 0 without a renderer.
+EMSCRIPTEN_KEEPALIVE int pv_set_tiles(int tiles) {
+  if (!gViewer || !gViewer->renderer) return 0;
+  gViewer->renderer->setFrameTiles(tiles);
+  return gViewer->renderer->frameTiles();
+}
+
+// Which part (1-based; 1: the frame began with it) of how many parts the last pv_step_part drew.
+EMSCRIPTEN_KEEPALIVE int pv_last_part() {
+  return gViewer ? gViewer->lastPart.part : 0;
+}
+EMSCRIPTEN_KEEPALIVE int pv_last_parts() {
+  return gViewer ? gViewer->lastPart.parts : 0;
 }
 
 EMSCRIPTEN_KEEPALIVE const char* pv_last_error() {

@@ -40,7 +40,7 @@ async function browser() {
     const page = b.context.pages()[0] || (await b.context.newPage());
     const lines = recordConsole(page);
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html` +
-                    `?frames=${frames}&pixelRatio=1&panel=0`, { timeout: 20_000 });
+                    `?frames=${frames}&pixelRatio=1&panel=0&adaptive=0`, { timeout: 20_000 });
     await page.waitForFunction(() => window.penumbraPage?.convergedCount > 0 ||
                                      window.penumbraPage?.errors.length || window.penumbraPage?.fatal,
                                null, { timeout: 300_000, polling: 200 });

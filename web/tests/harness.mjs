@@ -69,8 +69,10 @@ export function withTimeout(promise, ms, what) {
 }
 
 // Launches Chromium with a fresh temporary profile. Returns {context, close()}; close() is
-// bounded and removes the profile.
-export async function launch({ viewport = { width: 400, height: 420 }, launchMs = 20_000 } = {}) {
+// bounded and removes the profile. Device emulation (deviceScaleFactor, isMobile, hasTouch)
+// passes through to playwright.
+export async function launch({ viewport = { width: 400, height: 420 }, launchMs = 20_000,
+                               ...device } = {}) {
   const profile = mkdtempSync(join(tmpdir(), 'penumbra-chromium-'));
   let context;
   try {
@@ -79,6 +81,7 @@ export async function launch({ viewport = { width: 400, height: 420 }, launchMs 
       headless: true,
       timeout: launchMs,
       viewport,
+      ...device,
       args: CHROMIUM_ARGS,
     }), launchMs + 2_000, 'launch Chromium');
   } catch (e) {

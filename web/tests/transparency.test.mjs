@@ -47,7 +47,7 @@ test('a scene with BLEND, MASK and double-sided materials renders like native', 
   recordConsole(pg, consoleLines);
   try {
     const url = `http://127.0.0.1:${server.address().port}/index.html` +
-                `?scene=assets/glass/glass.json&frames=${FRAMES}&pixelRatio=1&panel=0`;
+                `?scene=assets/glass/glass.json&frames=${FRAMES}&pixelRatio=1&panel=0&adaptive=0`;
     await pg.goto(url, { timeout: 20_000 });
     await pg.waitForFunction(() => window.penumbraPage && (window.penumbraPage.ready ||
                                                            window.penumbraPage.fatal),

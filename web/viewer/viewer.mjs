@@ -50,7 +50,8 @@ function renderProgress(viewer) {
   $('progress-fill').classList.toggle('done', s.converged);
   const lines = [`${s.renderWidth}×${s.renderHeight}` +
                  (s.renderWidth !== s.canvasWidth ? ` of ${s.canvasWidth}×${s.canvasHeight}` : '') +
-                 ` · ${s.frameMs.toFixed(1)} ms/frame · ${s.stepsPerTick}/tick`];
+                 ` · ${s.frameMs.toFixed(1)} ms/frame` +
+                 (s.split > 1 ? ` in ${s.parts} parts` : ` · ${s.stepsPerTick}/tick`)];
   if (s.converged) lines.push(`converged in ${(s.convergedMs / 1000).toFixed(2)} s`);
   $('detail').textContent = lines.join('\n');
 }
@@ -59,7 +60,7 @@ function renderProgress(viewer) {
 
 const form = $('panel');
 const numberFields = ['frames', 'fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
-                      'resolutionScale', 'sunThreshold'];
+                      'resolutionScale', 'maxSplit', 'sunThreshold'];
 
 function fillPanel(settings) {
   for (const el of form.elements) {
@@ -191,7 +192,13 @@ async function main() {
     budgetMs: numberParam('budget'),
     resolutionScale: numberParam('scale'),
     pixelRatio: numberParam('pixelRatio'),
+    maxPixelRatio: numberParam('maxPixelRatio'),
+    maxSplit: numberParam('split'),
+    minStillScale: numberParam('minStillScale'),
+    minMotionScale: numberParam('minMotionScale'),
   };
+  // adaptive=0: the still image keeps the canvas's full size (tests comparing exact sizes).
+  if (query.get('adaptive')) options.adaptiveResolution = query.get('adaptive') !== '0';
   const overrides = { frames: numberParam('frames'), fd: numberParam('fd'),
                       exposure: numberParam('exposure'),
                       occlusionDistance: numberParam('occlusionDistance') };

@@ -34,6 +34,18 @@ struct RendererOptions {
 // warns).
 inline constexpr int kMaxPunctualLights = 8;
 
+// The most bands Renderer::setFrameTiles() splits a frame into.
+inline constexpr int kMaxFrameTiles = 64;
+
+// What Renderer::stepPart() did: the frame it worked on (0 once converged), whether that frame
+// is now complete (accumulated, in readRadiance() and present()), and which part of how many
+// it was (1-based).
+struct FramePart {
+  int frame = 0;
+  bool done = true;
+  int part = 0, parts = 0;
+};
+
 // Where present() draws the displayed image: a framebuffer (0 = the default one, or a host's
 // framebuffer object by its GL name) and a viewport in it.
 struct PresentTarget {
@@ -64,8 +76,21 @@ class Renderer {
   void setCamera(const Camera& camera);
   Status setSettings(const RenderSettings& settings);
 
-  // Draws the next intermediate frame; returns its number, or 0 once frame m is done.
+  // Draws the next intermediate frame (the rest of it when stepPart() began it); returns its
+  // number, or 0 once frame m is done.
   Result<int> step();
+  // Draws one part of the next intermediate frame, so a host with a time budget per display
+  // frame (the web viewer) never waits for a whole frame. Unsplit (frameTiles 1) a part is
+  // the whole frame. Split into k tiles, each pass over the image (prepass, every lighting
+  // batch, the accumulation) draws one of k horizontal bands per part and each shadow map is
+  // a part of its own. The image is the same as unsplit, and until the last part the
+  // displayed and read images are the previous complete frame's. Any restart drops a frame in
+  // progress.
+  Result<FramePart> stepPart();
+  // The number of bands of frames that stepPart() begins from now on (1..kMaxFrameTiles, and
+  // at most the image height); a frame in progress keeps its own.
+  void setFrameTiles(int tiles);
+  int frameTiles() const;
   // Restarts accumulation at frame 1 (the controller does this on any change).
   void restart();
   bool converged() const;

@@ -372,6 +372,15 @@ void setViewport(int x, int y, int width, int height) {
   glViewport(x, y, width, height);
 }
 
+void setScissor(int x, int y, int width, int height) {
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x, y, width, height);
+}
+
+void disableScissor() {
+  glDisable(GL_SCISSOR_TEST);
+}
+
 void clearColor(float r, float g, float b, float a) {
   glClearColor(r, g, b, a);
   glClear(GL_COLOR_BUFFER_BIT);

@@ -138,6 +138,10 @@ struct PipelineState {
 
 void apply(const PipelineState& state);
 void setViewport(int x, int y, int width, int height);
+// Limits drawing and clears to a rectangle (a band of a frame drawn in parts) until
+// disableScissor(); Penumbra's passes otherwise run with the scissor test off.
+void setScissor(int x, int y, int width, int height);
+void disableScissor();
 void clearColor(float r, float g, float b, float a);
 void clearDepth(float depth = 1.0f);
 // Clears float colour attachment `index` of the bound framebuffer.

@@ -39,6 +39,7 @@ StateGuard::StateGuard(bool active) : active_(active) {
   readFramebuffer_ = get(GL_READ_FRAMEBUFFER_BINDING);
   renderbuffer_ = get(GL_RENDERBUFFER_BINDING);
   glGetIntegerv(GL_VIEWPORT, viewport_.data());
+  glGetIntegerv(GL_SCISSOR_BOX, scissor_.data());  // a frame drawn in bands sets its own
   program_ = get(GL_CURRENT_PROGRAM);
   vertexArray_ = get(GL_VERTEX_ARRAY_BINDING);
   arrayBuffer_ = get(GL_ARRAY_BUFFER_BINDING);
@@ -121,6 +122,7 @@ StateGuard::~StateGuard() {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer_));
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  glScissor(scissor_[0], scissor_[1], scissor_[2], scissor_[3]);
 }
 
 }  // namespace penumbra::gl

@@ -22,7 +22,7 @@ class StateGuard {
  private:
   bool active_;
   int drawFramebuffer_ = 0, readFramebuffer_ = 0, renderbuffer_ = 0;
-  std::array<int, 4> viewport_{};
+  std::array<int, 4> viewport_{}, scissor_{};
   int program_ = 0, vertexArray_ = 0, arrayBuffer_ = 0, elementBuffer_ = 0, uniformBuffer_ = 0;
   int packBuffer_ = 0, unpackBuffer_ = 0;
   int activeTexture_ = 0;

@@ -10,7 +10,7 @@ Result<AccumulatePass> AccumulatePass::create(gl::ShaderLibrary& library) {
   return AccumulatePass(std::move(*pass));
 }
 
-void AccumulatePass::run(RenderTargets& targets, int n) const {
+void AccumulatePass::draw(const RenderTargets& targets, int n) const {
   const auto prev = static_cast<std::size_t>(targets.current);
   const auto next = static_cast<std::size_t>(1 - targets.current);
   targets.accumulation[next].framebuffer.bind();
@@ -22,7 +22,6 @@ void AccumulatePass::run(RenderTargets& targets, int n) const {
   p.set("uCurrent", 1);
   p.set("uWeight", 1.0f / static_cast<float>(n));
   pass_.draw();
-  targets.current = static_cast<int>(next);
 }
 
 }  // namespace penumbra::passes

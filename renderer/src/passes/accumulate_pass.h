@@ -11,8 +11,10 @@ namespace penumbra::passes {
 class AccumulatePass {
  public:
   static Result<AccumulatePass> create(gl::ShaderLibrary& library);
-  // Adds targets.frame as frame n; the other accumulation target becomes current.
-  void run(RenderTargets& targets, int n) const;
+  // Adds targets.frame as frame n into the other accumulation target (within the scissor, for
+  // a frame drawn in bands). The caller makes it current once the whole image is done: until
+  // then the previous mean stays readable.
+  void draw(const RenderTargets& targets, int n) const;
 
  private:
   explicit AccumulatePass(FullscreenPass pass) : pass_(std::move(pass)) {}

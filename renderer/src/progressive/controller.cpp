@@ -6,7 +6,7 @@ void Controller::setSettings(const ProgressiveSettings& settings) {
   if (settings == settings_) return;
   settings_ = settings;
   planValid_ = false;
-  next_ = 1;
+  restart();
 }
 
 void Controller::setLights(const std::vector<LightInfo>& lights) {
@@ -17,14 +17,14 @@ void Controller::setLights(const std::vector<LightInfo>& lights) {
   if (same) return;
   lights_ = lights;
   planValid_ = false;
-  next_ = 1;
+  restart();
 }
 
 void Controller::setDarkEnvironment(bool dark) {
   if (dark == darkEnvironment_) return;
   darkEnvironment_ = dark;
   planValid_ = false;
-  next_ = 1;
+  restart();
 }
 
 const std::vector<FramePlan>& Controller::plan() {
@@ -37,9 +37,31 @@ const std::vector<FramePlan>& Controller::plan() {
 
 Result<int> Controller::step(FrameRenderer& renderer) {
   if (converged()) return 0;
+  if (!inFrame_) {
+    const FramePlan& frame = plan()[static_cast<size_t>(next_ - 1)];
+    PN_TRY(renderer.renderFrame(frame));
+    return next_++;
+  }
+  for (;;) {
+    auto part = stepPart(renderer);
+    if (!part) return part.error();
+    if (part->done) return part->frame;
+  }
+}
+
+Result<PartStep> Controller::stepPart(FrameRenderer& renderer) {
+  if (converged()) return PartStep{};
   const FramePlan& frame = plan()[static_cast<size_t>(next_ - 1)];
-  PN_TRY(renderer.renderFrame(frame));
-  return next_++;
+  const bool begin = !inFrame_;
+  // A failed part drops the frame: the next call begins it again.
+  inFrame_ = false;
+  auto done = renderer.renderFramePart(frame, begin);
+  if (!done) return done.error();
+  if (!*done) {
+    inFrame_ = true;
+    return PartStep{.frame = next_, .done = false};
+  }
+  return PartStep{.frame = next_++, .done = true};
 }
 
 }  // namespace penumbra::progressive

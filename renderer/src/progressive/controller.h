@@ -1,6 +1,8 @@
 // ProgressiveController: owns the frame counter, the sample plan and invalidation, apart from
 // the renderer. It asks a FrameRenderer (the real renderer, or a mock in tests) to draw frame
-// n of the plan; a camera, scene or setting change restarts at frame 1.
+// n of the plan; a camera, scene or setting change restarts at frame 1. A frame may be drawn in
+// parts (stepPart): the counter advances only when its last part is done, so frame n stays
+// frame n of the plan however it was split.
 #pragma once
 
 #include <vector>
@@ -17,6 +19,20 @@ class FrameRenderer {
   virtual ~FrameRenderer() = default;
   // Draws and accumulates one intermediate frame. Frame 1 restarts the accumulation.
   virtual Status renderFrame(const FramePlan& plan) = 0;
+  // Draws the next part of `plan` (`begin`: its first part; anything left of an earlier frame
+  // is dropped) and says whether the frame is complete. By default one part is the whole frame.
+  virtual Result<bool> renderFramePart(const FramePlan& plan, bool begin) {
+    (void)begin;
+    PN_TRY(renderFrame(plan));
+    return true;
+  }
+};
+
+// What stepPart() did: the frame it worked on (0 once converged) and whether that frame is now
+// complete (accumulated).
+struct PartStep {
+  int frame = 0;
+  bool done = true;
 };
 
 class Controller {
@@ -29,10 +45,15 @@ class Controller {
   // A black environment: direct light starts at frame 2 instead of floor(m f_d).
   void setDarkEnvironment(bool dark);
   // The camera or the scene changed: restart (the plan itself stays the same).
-  void invalidate() { next_ = 1; }
+  void invalidate() { restart(); }
 
-  // Renders the next frame unless converged. Returns the frame rendered (0 if converged).
+  // Renders the next frame unless converged (the rest of it when one is in progress). Returns
+  // the frame rendered (0 if converged).
   Result<int> step(FrameRenderer& renderer);
+  // Renders the next part of the next frame unless converged.
+  Result<PartStep> stepPart(FrameRenderer& renderer);
+  // A frame has parts drawn but not its last one.
+  bool inFrame() const { return inFrame_; }
 
   int framesDone() const { return next_ - 1; }
   int totalFrames() const { return settings_.frames; }
@@ -47,6 +68,12 @@ class Controller {
   bool planValid_ = false;
   bool darkEnvironment_ = false;
   int next_ = 1;
+  bool inFrame_ = false;
+
+  void restart() {
+    next_ = 1;
+    inFrame_ = false;
+  }
 };
 
 }  // namespace penumbra::progressive

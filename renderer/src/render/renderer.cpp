@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -232,31 +233,80 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return l.position;
   }
 
-  Status renderFrame(const FramePlan& plan) override {
+  // An intermediate frame as a list of units of GL work, run in order. Unsplit (step()) they
+  // run in one go. Split into `tiles` horizontal bands (stepPart()), every pass over the image
+  // (prepass, lighting batches, accumulation) runs once per band under a scissor and each
+  // shadow map is a unit of its own; each unit is one part. Every pixel sees the same draws
+  // with the same inputs either way, so the image is the same: lighting reads the prepass
+  // (complete before any lighting unit) and the previous mean (accumulation writes the other
+  // target and swaps only after its last band), and a batch's shadow maps are drawn before its
+  // bands and only overwritten after them.
+  struct PendingFrame {
+    FramePlan plan;
+    CameraMatrices cm;
+    int tiles = 1;
+    std::vector<passes::LightingBatch> batches;
+    std::vector<std::function<Status()>> units;
+    size_t next = 0;
+  };
+  PendingFrame pending;
+  int frameTiles = 1;
+
+  // Restricts drawing to band t of the pending frame (no-op unsplit). Bands cover the image
+  // bottom-up, rows [t h / k, (t + 1) h / k).
+  void band(int t) const {
+    if (pending.tiles <= 1) return;
+    const int h = targets->height, k = pending.tiles;
+    const int y0 = t * h / k, y1 = (t + 1) * h / k;
+    gl::setScissor(0, y0, targets->width, y1 - y0);
+  }
+  void endBand() const {
+    if (pending.tiles > 1) gl::disableScissor();
+  }
+
+  void beginFrame(const FramePlan& plan, int tiles) {
+    pending = {};
+    pending.plan = plan;
+    pending.tiles = std::clamp(tiles, 1, std::max(1, std::min(kMaxFrameTiles, targets->height)));
     stats = {};
     stats.frame = plan.frame;
     endPass(nullptr);
     if (plan.frame == 1) targets->current = 0;
     const Camera cam = activeCamera();
-    const CameraMatrices cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
+    pending.cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
     if (plan.frame == 1) prepassValid = false;
+    auto& units = pending.units;
+    const int k = pending.tiles;
     // BLEND surfaces cover the pixels differently each frame: the occlusion rays must see
     // this frame's coverage, so the prepass is redrawn every frame when there are any.
     const bool coverageChanges = scene && !scene->blended().empty();
-    if (plan.occlusion && (plan.renderPrepass || !prepassValid || coverageChanges)) {
+    const bool drawPrepass =
+        plan.occlusion && (plan.renderPrepass || !prepassValid || coverageChanges);
+    if (drawPrepass) {
       const CameraMatrices still = cameraMatrices(cam, targets->width, targets->height, {0, 0});
-      prepass->render(*targets, scene.get(), still.view, still.projection,
-                      cameraCoverageFrame(plan));
-      prepassValid = true;
-      stats.prepass = true;
-      endPass(&stats.prepassMs);
+      for (int t = 0; t < k; ++t) {
+        units.push_back([this, still, t, k]() -> Status {
+          if (t == 0) prepassValid = false;  // until its last band is drawn
+          band(t);
+          prepass->render(*targets, scene.get(), still.view, still.projection,
+                          cameraCoverageFrame(pending.plan));
+          endBand();
+          if (t == k - 1) {
+            prepassValid = true;
+            stats.prepass = true;
+          }
+          endPass(&stats.prepassMs);
+          return {};
+        });
+      }
     }
-    stats.occlusion = plan.occlusion && prepassValid;
+    const bool occlusion = plan.occlusion && (drawPrepass || prepassValid);
+    stats.occlusion = occlusion;
 
     // Split this frame's light samples: area samples go in batches of up to kMaxShadowMaps.
     std::vector<const LightSample*> area;
     std::vector<passes::PunctualDraw> punctual;
-    for (const LightSample& s : plan.lights) {
+    for (const LightSample& s : pending.plan.lights) {
       if (s.light < 0 || s.light >= static_cast<int>(lights.size())) continue;
       const Light& l = lights[static_cast<size_t>(s.light)];
       if (l.isArea()) {
@@ -287,23 +337,25 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const size_t firstBatch = kBatch - punctualMaps;
     const size_t batches =
         area.size() <= firstBatch ? 1 : 1 + (area.size() - firstBatch + kBatch - 1) / kBatch;
+    pending.batches.reserve(batches);
     for (size_t b = 0; b < batches; ++b) {
-      passes::LightingBatch batch{
+      pending.batches.push_back(passes::LightingBatch{
           .targets = &*targets,
           .scene = scene.get(),
           .environment = environment.get(),
           .shadows = &*shadows,
           .pointShadows = &*pointShadows,
           .settings = &settings,
-          .camera = &cm,
+          .camera = &pending.cm,
           .sequence = plan.sequence,
           .occlusionDistance = effectiveOcclusionDistance(
               settings.progressive,
               scene && scene->bounds().valid() ? 2.0f * scene->bounds().radius() : 0.0f),
           .first = b == 0,
           // Occlusion only in the first batch: later ones add light.
-          .occlusion = b == 0 && plan.occlusion && prepassValid,
-          .coverageFrame = cameraCoverageFrame(plan)};
+          .occlusion = b == 0 && occlusion,
+          .coverageFrame = cameraCoverageFrame(plan)});
+      passes::LightingBatch& batch = pending.batches.back();
       const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
       const size_t to = b == 0 ? firstBatch : from + kBatch;
       std::vector<const LightSample*> samples(
@@ -313,46 +365,92 @@ struct Renderer::Impl : progressive::FrameRenderer {
       std::stable_sort(
           samples.begin(), samples.end(),
           [](const LightSample* x, const LightSample* y) { return x->light < y->light; });
+      const int shadowFrame = plan.frame - 1;
       for (size_t i = 0; i < samples.size(); ++i) {
         const LightSample& s = *samples[i];
         const Light& l = lights[static_cast<size_t>(s.light)];
         passes::AreaSampleDraw draw{.light = &l, .lightIndex = s.light, .weight = s.weight};
         if (s.shadowed && scene) {
           draw.shadowed = true;
-          draw.view = shadows->render(static_cast<int>(i), *scene, samplePosition(l, s.point),
-                                      l.direction, l.up, plan.frame - 1, ++shadowStream);
-          ++stats.shadowPasses;
-          endPass(&stats.shadowMs);
+          const glm::vec3 origin = samplePosition(l, s.point);
+          units.push_back([this, b, i, origin, shadowFrame, stream = ++shadowStream]() -> Status {
+            passes::AreaSampleDraw& d = pending.batches[b].area[i];
+            d.view = shadows->render(static_cast<int>(i), *scene, origin, d.light->direction,
+                                     d.light->up, shadowFrame, stream);
+            ++stats.shadowPasses;
+            endPass(&stats.shadowMs);
+            return {};
+          });
         }
         batch.area.push_back(draw);
       }
       if (b == 0) {
         // Their maps follow the batch's area samples.
         const int firstSlot = static_cast<int>(batch.area.size());
-        for (passes::PunctualDraw& pd : punctual) {
+        for (size_t j = 0; j < punctual.size(); ++j) {
+          passes::PunctualDraw& pd = punctual[j];
           if (pd.shadowSlot < 0) continue;
           pd.shadowSlot += firstSlot;
-          const Light& l = *pd.light;
-          pd.view = l.type == LightType::Directional
-                        ? shadows->render(pd.shadowSlot, *scene,
-                                          passes::fitDirectionalShadowView(
-                                              pd.direction, scene->bounds(), shadows->size()),
-                                          plan.frame - 1, ++shadowStream)
-                        : shadows->render(pd.shadowSlot, *scene, l.position, l.direction, l.up,
-                                          plan.frame - 1, ++shadowStream);
-          ++stats.shadowPasses;
-          endPass(&stats.shadowMs);
+          units.push_back([this, j, shadowFrame, stream = ++shadowStream]() -> Status {
+            passes::PunctualDraw& d = pending.batches[0].punctual[j];
+            const Light& l = *d.light;
+            d.view = l.type == LightType::Directional
+                         ? shadows->render(d.shadowSlot, *scene,
+                                           passes::fitDirectionalShadowView(
+                                               d.direction, scene->bounds(), shadows->size()),
+                                           shadowFrame, stream)
+                         : shadows->render(d.shadowSlot, *scene, l.position, l.direction, l.up,
+                                           shadowFrame, stream);
+            ++stats.shadowPasses;
+            endPass(&stats.shadowMs);
+            return {};
+          });
         }
         batch.punctual = punctual;
       }
-      PN_TRY(lighting->draw(batch));
-      ++stats.lightingPasses;
-      endPass(&stats.lightingMs);
+      const bool last = b + 1 == batches;
+      for (int t = 0; t < k; ++t) {
+        units.push_back([this, b, t, k, last]() -> Status {
+          band(t);
+          const Status st = lighting->draw(pending.batches[b]);
+          if (!st) {
+            endBand();
+            return st;
+          }
+          if (t == k - 1) ++stats.lightingPasses;
+          endPass(&stats.lightingMs);
+          if (last) {
+            accumulate->draw(*targets, pending.plan.frame);
+            if (t == k - 1) targets->current = 1 - targets->current;  // the new mean
+            endPass(&stats.accumulateMs);
+          }
+          endBand();
+          return {};
+        });
+      }
     }
+  }
 
-    accumulate->run(*targets, plan.frame);
-    endPass(&stats.accumulateMs);
-    return gl::checkError("frame " + std::to_string(plan.frame));
+  // Runs the pending frame's next unit (all of them unsplit). True once the frame is done.
+  Result<bool> runPart() {
+    const bool all = pending.tiles <= 1;
+    do {
+      PN_TRY(pending.units[pending.next++]());
+    } while (all && pending.next < pending.units.size());
+    PN_TRY(gl::checkError("frame " + std::to_string(pending.plan.frame)));
+    return pending.next >= pending.units.size();
+  }
+
+  Status renderFrame(const FramePlan& plan) override {
+    beginFrame(plan, 1);
+    auto done = runPart();
+    if (!done) return done.error();
+    return {};
+  }
+
+  Result<bool> renderFramePart(const FramePlan& plan, bool begin) override {
+    if (begin || pending.next >= pending.units.size()) beginFrame(plan, frameTiles);
+    return runPart();
   }
 };
 
@@ -408,6 +506,28 @@ Status Renderer::setSettings(const RenderSettings& settings) {
 Result<int> Renderer::step() {
   gl::StateGuard guard(impl_->options.preserveHostState);
   return impl_->controller.step(*impl_);
+}
+Result<FramePart> Renderer::stepPart() {
+  gl::StateGuard guard(impl_->options.preserveHostState);
+  auto r = impl_->controller.stepPart(*impl_);
+  if (!r) return r.error();
+  // Unsplit, the frame's units ran as one part.
+  const auto& p = impl_->pending;
+  const bool whole = p.tiles <= 1;
+  return FramePart{.frame = r->frame,
+                   .done = r->done,
+                   .part = r->frame == 0 ? 0
+                           : whole       ? 1
+                                         : static_cast<int>(p.next),
+                   .parts = r->frame == 0 ? 0
+                            : whole       ? 1
+                                          : static_cast<int>(p.units.size())};
+}
+void Renderer::setFrameTiles(int tiles) {
+  impl_->frameTiles = std::clamp(tiles, 1, kMaxFrameTiles);
+}
+int Renderer::frameTiles() const {
+  return impl_->frameTiles;
 }
 void Renderer::restart() {
   impl_->controller.invalidate();
