@@ -324,12 +324,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     for (passes::PunctualDraw& pd : punctual) {
       if (!scene) break;
       if (pd.light->type == LightType::Point) {
-        if (pointMaps >= passes::kMaxPointShadows) continue;
-        auto view = pointShadows->ensure(pointMaps, *scene, pd.light->position);
-        if (!view) return view.error();
-        pd.pointShadow = pointMaps++;
-        pd.pointView = *view;
-        endPass(&stats.shadowMs);
+        if (pointMaps < passes::kMaxPointShadows) pd.pointShadow = pointMaps++;
       } else if (punctualMaps < kBatch) {
         pd.shadowSlot = static_cast<int>(punctualMaps++);
       }
@@ -389,6 +384,18 @@ struct Renderer::Impl : progressive::FrameRenderer {
         const int firstSlot = static_cast<int>(batch.area.size());
         for (size_t j = 0; j < punctual.size(); ++j) {
           passes::PunctualDraw& pd = punctual[j];
+          if (pd.pointShadow >= 0) {
+            // A cube map, rendered only when the scene has changed since the last frame.
+            units.push_back([this, j]() -> Status {
+              passes::PunctualDraw& d = pending.batches[0].punctual[j];
+              auto view = pointShadows->ensure(d.pointShadow, *scene, d.light->position);
+              if (!view) return view.error();
+              d.pointView = *view;
+              endPass(&stats.shadowMs);
+              return {};
+            });
+            continue;
+          }
           if (pd.shadowSlot < 0) continue;
           pd.shadowSlot += firstSlot;
           units.push_back([this, j, shadowFrame, stream = ++shadowStream]() -> Status {
