@@ -25,6 +25,7 @@
 #include "passes/targets.h"
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
+#include "render/light_samples.h"
 
 namespace penumbra {
 namespace {
@@ -167,24 +168,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return {};
   }
 
-  // The environment's sun as a directional light, turned and scaled like the environment.
-  std::optional<Light> sunLight() const {
-    if (!sun) return std::nullopt;
-    const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation),
-                                     glm::vec3(0, 1, 0)));
-    Light l;
-    l.name = "environment sun";
-    l.type = LightType::Directional;
-    l.direction = -glm::normalize(turn * sun->direction);
-    l.color = sun->irradiance;
-    l.intensity = settings.environmentIntensity;
-    l.angularDiameter = 2.0f * sun->angularRadius;
-    return l;
-  }
-
   void setLights() {
     lights = sceneLights;
-    if (auto s = sunLight()) lights.push_back(*s);
+    if (sun) lights.push_back(render::sunLight(*sun, settings));
     std::vector<progressive::LightInfo> infos;
     for (const Light& l : lights) {
       progressive::LightInfo info;
@@ -204,33 +190,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     Scene empty;
     if (scene) empty.bounds = scene->bounds();
     return defaultCamera(empty);
-  }
-
-  // The direction of travel of a punctual light sample: a directional light's is spread over
-  // its angular size (the sample point on a disk), the others' is the light's own.
-  glm::vec3 punctualDirection(const Light& l, glm::vec2 u) const {
-    if (l.type != LightType::Directional) return l.direction;
-    const float diameter = l.angularDiameter > 0.0f
-                               ? l.angularDiameter
-                               : glm::radians(settings.progressive.directionalAngle);
-    const float radius = std::tan(0.5f * diameter);
-    const glm::vec3 d = glm::normalize(l.direction);
-    const glm::vec3 a = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    const glm::vec3 right = glm::normalize(glm::cross(a, d)), up = glm::cross(d, right);
-    const glm::vec2 p = progressive::concentricDisk(u) * radius;
-    return glm::normalize(d + p.x * right + p.y * up);
-  }
-
-  // World position of a light sample on the light's true surface.
-  static glm::vec3 samplePosition(const Light& l, glm::vec2 u) {
-    if (l.type == LightType::Disk) {
-      glm::vec2 d = progressive::concentricDisk(u) * (0.5f * l.width);
-      return l.position + d.x * l.right + d.y * l.up;
-    }
-    if (l.type == LightType::Rect) {
-      return l.position + (u.x - 0.5f) * l.width * l.right + (u.y - 0.5f) * l.height * l.up;
-    }
-    return l.position;
   }
 
   // An intermediate frame as a list of units of GL work, run in order. Unsplit (step()) they
@@ -312,7 +271,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (l.isArea()) {
         area.push_back(&s);
       } else {
-        punctual.push_back({&l, s.weight, punctualDirection(l, s.point)});
+        punctual.push_back({&l, s.weight, render::punctualDirection(l, s.point, settings)});
       }
     }
     constexpr size_t kBatch = passes::kMaxShadowMaps;
@@ -367,7 +326,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
         passes::AreaSampleDraw draw{.light = &l, .lightIndex = s.light, .weight = s.weight};
         if (s.shadowed && scene) {
           draw.shadowed = true;
-          const glm::vec3 origin = samplePosition(l, s.point);
+          const glm::vec3 origin = render::samplePosition(l, s.point);
           units.push_back([this, b, i, origin, shadowFrame, stream = ++shadowStream]() -> Status {
             passes::AreaSampleDraw& d = pending.batches[b].area[i];
             d.view = shadows->render(static_cast<int>(i), *scene, origin, d.light->direction,

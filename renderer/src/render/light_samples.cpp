@@ -1,0 +1,48 @@
+#include "render/light_samples.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "progressive/sequences.h"
+
+namespace penumbra::render {
+
+Light sunLight(const ibl::Sun& sun, const RenderSettings& settings) {
+  const glm::mat3 turn(
+      glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation), glm::vec3(0, 1, 0)));
+  Light l;
+  l.name = "environment sun";
+  l.type = LightType::Directional;
+  l.direction = -glm::normalize(turn * sun.direction);
+  l.color = sun.irradiance;
+  l.intensity = settings.environmentIntensity;
+  l.angularDiameter = 2.0f * sun.angularRadius;
+  return l;
+}
+
+glm::vec3 punctualDirection(const Light& l, glm::vec2 u, const RenderSettings& settings) {
+  if (l.type != LightType::Directional) return l.direction;
+  const float diameter = l.angularDiameter > 0.0f
+                             ? l.angularDiameter
+                             : glm::radians(settings.progressive.directionalAngle);
+  const float radius = std::tan(0.5f * diameter);
+  const glm::vec3 d = glm::normalize(l.direction);
+  const glm::vec3 a = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 right = glm::normalize(glm::cross(a, d)), up = glm::cross(d, right);
+  const glm::vec2 p = progressive::concentricDisk(u) * radius;
+  return glm::normalize(d + p.x * right + p.y * up);
+}
+
+glm::vec3 samplePosition(const Light& l, glm::vec2 u) {
+  if (l.type == LightType::Disk) {
+    const glm::vec2 d = progressive::concentricDisk(u) * (0.5f * l.width);
+    return l.position + d.x * l.right + d.y * l.up;
+  }
+  if (l.type == LightType::Rect) {
+    return l.position + (u.x - 0.5f) * l.width * l.right + (u.y - 0.5f) * l.height * l.up;
+  }
+  return l.position;
+}
+
+}  // namespace penumbra::render
