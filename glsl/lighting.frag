@@ -51,11 +51,18 @@ void main() {
   SurfaceInputs s = readSurface(v);
   vec3 n = s.normal;
   float NoV = max(dot(n, v), 1e-4);
+  if (uUnlit != 0) {
+    // KHR_materials_unlit: the base colour is the radiance (once, in the first batch).
+    fragColor = vec4(s.baseColor.rgb * uEnvWeight,
+                     uEnvWeight * (uAlphaMode == 2 && uCoverageFrame < 0 ? s.baseColor.a : 1.0));
+    return;
+  }
   vec3 diffuseColor = s.baseColor.rgb * (1.0 - s.metallic);
-  vec3 f0 = mix(vec3(0.04), s.baseColor.rgb, s.metallic);
+  vec3 f0 = mix(uDielectricF0, s.baseColor.rgb, s.metallic);
+  float f90 = mix(uDielectricF90, 1.0, s.metallic);
   float alpha = s.perceptualRoughness * s.perceptualRoughness;
   vec3 dfgTerms = dfg(NoV, s.perceptualRoughness);
-  vec3 specularScale = (f0 * dfgTerms.x + dfgTerms.y) * (1.0 + f0 * (1.0 / dfgTerms.z - 1.0));
+  vec3 specularScale = (f0 * dfgTerms.x + f90 * dfgTerms.y) * (1.0 + f0 * (1.0 / dfgTerms.z - 1.0));
   // glTF's fresnel_mix: the diffuse base only receives what the specular layer does not
   // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
   // white furnace reflects exactly the environment.
@@ -107,7 +114,7 @@ void main() {
       L.up = uAreaUp[i];
       L.size = uAreaShape[i].xy;
       L.disk = uAreaShape[i].z > 0.5;
-      evaluateAreaLight(L, vWorldPos, n, v, f0, alpha, irradiance, specular);
+      evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
     }
     if (irradiance <= 0.0) continue;
     float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
@@ -145,7 +152,7 @@ void main() {
     if (NoL <= 0.0) continue;
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
     vec3 e = uPunctualColor[i] * attenuation * NoL;
-    vec3 specular = specularBrdf(n, v, l, f0, alpha, 1.0);
+    vec3 specular = specularBrdf(n, v, l, f0, f90, alpha, 1.0);
     float tanRadius = uPunctualDisk[i].w;
     if (tanRadius > 0.0) {
       // A disk at infinity (the sun): Karis' representative point, the direction within the
@@ -158,7 +165,7 @@ void main() {
       vec3 lr = normalize(centre + toRay * min(1.0, tanRadius / max(length(toRay), 1e-6)));
       float widened = min(1.0, alpha + 0.5 * tanRadius);
       float norm = (alpha / widened) * (alpha / widened);
-      specular = specularBrdf(n, v, lr, f0, alpha, norm) * saturate(dot(n, lr)) / NoL;
+      specular = specularBrdf(n, v, lr, f0, f90, alpha, norm) * saturate(dot(n, lr)) / NoL;
     }
     color += e * (diffuseColor * INV_PI + specular);
   }

@@ -111,7 +111,7 @@ vec3 representativePoint(AreaLight L, vec3 p, vec3 r) {
 
 // Radiance reflected toward v per unit light luminance, split into diffuse irradiance
 // (to be multiplied by albedo / pi) and specular.
-void evaluateAreaLight(AreaLight L, vec3 p, vec3 n, vec3 v, vec3 f0, float alpha,
+void evaluateAreaLight(AreaLight L, vec3 p, vec3 n, vec3 v, vec3 f0, float f90, float alpha,
                        out float irradiance, out vec3 specular) {
   irradiance = areaLightIrradiance(L, p, n);
   specular = vec3(0.0);
@@ -127,5 +127,5 @@ void evaluateAreaLight(AreaLight L, vec3 p, vec3 n, vec3 v, vec3 f0, float alpha
   float widened = min(1.0, alpha + equivalentRadius / (2.0 * dist));
   float norm = (alpha / widened) * (alpha / widened);
   // D keeps its shape but its peak drops to that of the widened lobe: (alpha / alpha')^2.
-  specular = specularBrdf(n, v, l, f0, alpha, norm) * irradiance;
+  specular = specularBrdf(n, v, l, f0, f90, alpha, norm) * irradiance;
 }

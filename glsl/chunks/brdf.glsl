@@ -21,13 +21,19 @@ vec3 F_Schlick(vec3 f0, float VoH) {
   return f0 + (vec3(1.0) - f0) * f;
 }
 
+// With a grazing reflectance f90 below 1 (KHR_materials_specular's weight on dielectrics).
+vec3 F_Schlick(vec3 f0, float f90, float VoH) {
+  float f = pow(1.0 - VoH, 5.0);
+  return f0 + (vec3(f90) - f0) * f;
+}
+
 // Specular BRDF value (no cosine) for light direction l; `norm` scales D for area lights
 // (Karis' energy normalisation of the widened lobe).
-vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float alpha, float norm) {
+vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float norm) {
   vec3 h = normalize(v + l);
   float NoV = max(dot(n, v), 1e-4);
   float NoL = max(dot(n, l), 0.0);
   float NoH = max(dot(n, h), 0.0);
   float VoH = max(dot(v, h), 0.0);
-  return D_GGX(NoH, alpha) * norm * V_SmithGGXCorrelated(NoV, NoL, alpha) * F_Schlick(f0, VoH);
+  return D_GGX(NoH, alpha) * norm * V_SmithGGXCorrelated(NoV, NoL, alpha) * F_Schlick(f0, f90, VoH);
 }

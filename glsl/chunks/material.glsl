@@ -9,6 +9,11 @@ uniform float uNormalScale;
 uniform float uOcclusionStrength;
 uniform int uAlphaMode;  // 0 opaque, 1 mask, 2 blend
 uniform float uAlphaCutoff;
+// KHR_materials_ior and KHR_materials_specular: the dielectric reflectance at normal and at
+// grazing incidence (0.04 and 1 by default); KHR_materials_unlit.
+uniform vec3 uDielectricF0;
+uniform float uDielectricF90;
+uniform int uUnlit;
 uniform int uTextureMask;   // bit i: slot i has a texture
 uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
 uniform mat3 uUvTransform[5];

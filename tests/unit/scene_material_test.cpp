@@ -161,6 +161,47 @@ TEST(SceneGltfMaterial, DefaultsAndAlphaModes) {
   EXPECT_TRUE(hasWarning(*scene, "SHINY"));
 }
 
+TEST(SceneGltfMaterial, IorSpecularAndUnlitExtensions) {
+  GltfBuilder b;
+  b.useExtension("KHR_materials_ior");
+  b.useExtension("KHR_materials_specular");
+  b.useExtension("KHR_materials_unlit");
+  auto ext = [&](json e) { b.push("materials", {{"extensions", e}}); };
+  ext(json::object());                           // 0: defaults
+  ext({{"KHR_materials_ior", {{"ior", 2.0}}}});  // 1
+  ext({{"KHR_materials_ior", {{"ior", 0.5}}}});  // 2: below 1
+  ext({{"KHR_materials_ior", {{"ior", 0.0}}}});  // 3: infinite
+  ext({{"KHR_materials_specular",                // 4
+        {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.0, 0.5}}}}});
+  ext({{"KHR_materials_specular",  // 5: clamped, texture
+        {{"specularFactor", 2.0}, {"specularTexture", {{"index", 0}}}}}});
+  ext({{"KHR_materials_unlit", json::object()}});  // 6
+  b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
+  b.push("textures", {{"source", 0}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const auto& m = scene->materials;
+  ASSERT_EQ(m.size(), 7u);
+  EXPECT_FLOAT_EQ(m[0].ior, 1.5f);
+  EXPECT_NEAR(m[0].dielectricF0().x, 0.04f, 1e-6f);
+  EXPECT_FALSE(m[0].unlit);
+  EXPECT_NEAR(m[1].dielectricF0().y, 1.0f / 9.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(m[2].ior, 1.0f);
+  EXPECT_EQ(m[2].dielectricF0(), glm::vec3(0.0f));
+  EXPECT_TRUE(hasWarning(*scene, "materials[2].extensions.KHR_materials_ior.ior"));
+  EXPECT_NEAR(m[3].dielectricF0().z, 1.0f, 1e-6f);
+  const glm::vec3 f4 = m[4].dielectricF0();
+  EXPECT_NEAR(f4.x, 0.02f, 1e-6f);
+  EXPECT_EQ(f4.y, 0.0f);
+  EXPECT_NEAR(f4.z, 0.01f, 1e-6f);
+  EXPECT_FLOAT_EQ(m[5].specularFactor, 1.0f);
+  EXPECT_TRUE(hasWarning(*scene, "specularFactor: outside [0, 1]"));
+  EXPECT_TRUE(hasWarning(*scene, "specularTexture is not sampled"));
+  EXPECT_TRUE(m[6].unlit);
+  // None of the three is reported as ignored.
+  for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
+}
+
 TEST(SceneGltfMaterial, OversizedImagesAreHalvedUntilTheyFit) {
   GltfBuilder b;
   b.push("images", {{"uri", pngDataUri(8, 4, {1, 0.5f, 0, 1})}});

@@ -82,6 +82,13 @@ struct Material {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+  float ior = 1.5f;                     // KHR_materials_ior
+  float specularFactor = 1.0f;          // KHR_materials_specular (factors; textures ignored)
+  glm::vec3 specularColorFactor{1.0f};  // KHR_materials_specular
+  bool unlit = false;                   // KHR_materials_unlit
+  // The dielectric reflectance at normal incidence the shader uses:
+  // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
+  glm::vec3 dielectricF0() const;
 };
 
 // One drawable primitive, de-indexed into separate attribute arrays. Optional arrays are

@@ -194,6 +194,9 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uOcclusionStrength", m.occlusionStrength);
   program.set("uAlphaMode", static_cast<int>(m.alphaMode));
   program.set("uAlphaCutoff", m.alphaCutoff);
+  program.set("uDielectricF0", m.dielectricF0());
+  program.set("uDielectricF90", m.specularFactor);
+  program.set("uUnlit", m.unlit ? 1 : 0);
   const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
                                &m.occlusionTexture, &m.emissiveTexture};
   static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",

@@ -15,10 +15,11 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 7> kSupportedExtensions = {
+constexpr std::array<std::string_view, 10> kSupportedExtensions = {
     "KHR_texture_transform",   "KHR_materials_emissive_strength", "KHR_lights_punctual",
     "EXT_lights_area",         "KHR_mesh_quantization",           "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression",
+    "EXT_meshopt_compression", "KHR_materials_ior",               "KHR_materials_specular",
+    "KHR_materials_unlit",
 };
 
 bool isSupported(const std::string& ext) {
@@ -38,8 +39,8 @@ Status checkExtensions(const Document& doc, LoadContext& ctx) {
     if (isSupported(ext)) continue;
     if (ext.rfind("KHR_materials_", 0) == 0) {
       ctx.warn("uses " + ext +
-               ", which is ignored (only the metallic-roughness model and "
-               "KHR_materials_emissive_strength are supported)");
+               ", which is ignored (the metallic-roughness model with emissive_strength, ior, "
+               "specular and unlit is supported)");
     } else {
       ctx.warn("uses unsupported extension " + ext + " (ignored)");
     }

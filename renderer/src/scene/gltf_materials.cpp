@@ -8,6 +8,15 @@
 
 #include "scene/gltf_document.h"
 
+namespace penumbra {
+
+glm::vec3 Material::dielectricF0() const {
+  const float r = (ior - 1.0f) / (ior + 1.0f);
+  return glm::min(glm::vec3(r * r) * specularColorFactor, glm::vec3(1.0f)) * specularFactor;
+}
+
+}  // namespace penumbra
+
 namespace penumbra::gltf {
 namespace {
 

@@ -1,6 +1,7 @@
 // JSON -> Document. Every property is read through typed getters that record the first error
 // with its JSON path ("accessors[3].bufferView: ..."), and every index is checked against the
 // array it refers to here, so the later stages can index without further checks.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -36,6 +37,38 @@ TextureInfoDesc parseTextureInfo(Parser& p, const json& info, const std::string&
     t.transform = translation * rot * scaling;
   }
   return t;
+}
+
+// KHR_materials_ior, KHR_materials_specular (factors) and KHR_materials_unlit. Out-of-range
+// values are clamped with a warning naming the path; specular textures are not sampled (the
+// lighting shader has no texture unit left for them on WebGL2's 16): a warning says so.
+void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path, Material& m,
+                             LoadContext& ctx) {
+  if (const json* e = p.object(ext, "KHR_materials_ior", path)) {
+    const std::string ep = path + ".KHR_materials_ior";
+    const double ior = p.number(*e, "ior", ep, 1.5);
+    // The extension allows 0 (meaning an infinite index: F0 = 1) besides [1, inf).
+    if (ior == 0.0) {
+      m.ior = 3.4e38f;
+    } else if (ior < 1.0) {
+      ctx.warn(ep + ".ior: " + std::to_string(ior) + " is below 1; using 1");
+      m.ior = 1.0f;
+    } else {
+      m.ior = static_cast<float>(ior);
+    }
+  }
+  if (const json* e = p.object(ext, "KHR_materials_specular", path)) {
+    const std::string ep = path + ".KHR_materials_specular";
+    const double f = p.number(*e, "specularFactor", ep, 1.0);
+    if (f < 0.0 || f > 1.0) ctx.warn(ep + ".specularFactor: outside [0, 1]; clamped");
+    m.specularFactor = static_cast<float>(std::clamp(f, 0.0, 1.0));
+    m.specularColorFactor =
+        glm::max(p.vec<3>(*e, "specularColorFactor", ep, glm::vec3(1.0f)), glm::vec3(0.0f));
+    for (const char* t : {"specularTexture", "specularColorTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
+  if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
 }
 
 LightType areaType(const std::string& s) {
@@ -387,6 +420,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
         m.emissiveStrength = static_cast<float>(p.number(
             *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
       }
+      parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
     }
     doc.materials.push_back(std::move(md));
   });
