@@ -81,6 +81,44 @@ TEST(DistributorTest, FrameOneIsEnvironmentOnlyAndThePrepassComesAtFrameTwo) {
   EXPECT_FALSE(plan[37].lights.empty());
 }
 
+TEST(DistributorTest, TheEnvironmentsSunShinesFromFrameOne) {
+  // The sun taken out of the environment's cube map (fromFrameOne) must not be missing from
+  // frame 1, the frame shown while navigating: its centre sample comes first, its samples
+  // spread over all m frames with their full energy; the other lights still wait.
+  for (int m : {1, 16, 128}) {
+    ProgressiveSettings s;
+    s.frames = m;
+    auto infos = lights(2);
+    infos[1].shape = LightShape::Disk;
+    infos[1].fromFrameOne = true;
+    const auto plan = distributeSamples(s, infos);
+    const int start = directStartFrame(m, s.directDelay);
+    double sunWeight = 0.0;
+    int firstSun = 0, lastSun = 0, firstOther = 0;
+    for (const auto& f : plan) {
+      for (const auto& ls : f.lights) {
+        if (ls.light == 1) {
+          sunWeight += ls.weight;
+          if (!firstSun) firstSun = f.frame;
+          lastSun = f.frame;
+        } else if (!firstOther) {
+          firstOther = f.frame;
+        }
+      }
+    }
+    EXPECT_EQ(firstSun, 1) << "m " << m;
+    EXPECT_GE(lastSun, m * 3 / 4) << "m " << m;
+    EXPECT_NEAR(sunWeight, m, 1e-3 * m);
+    EXPECT_EQ(firstOther, m == 1 ? 1 : start) << "m " << m;
+    // Frame 1's sun sample is the disk's centre (the centre-outward order).
+    for (const auto& ls : plan[0].lights) {
+      if (ls.light == 1) {
+        EXPECT_LT(glm::length(ls.point - glm::vec2(0.5f)), 0.25f);
+      }
+    }
+  }
+}
+
 TEST(DistributorTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
   ProgressiveSettings s;
   s.frames = 128;

@@ -12,7 +12,8 @@ void Controller::setSettings(const ProgressiveSettings& settings) {
 void Controller::setLights(const std::vector<LightInfo>& lights) {
   bool same = lights.size() == lights_.size();
   for (size_t i = 0; same && i < lights.size(); ++i) {
-    same = lights[i].shape == lights_[i].shape && lights[i].aspect == lights_[i].aspect;
+    same = lights[i].shape == lights_[i].shape && lights[i].aspect == lights_[i].aspect &&
+           lights[i].fromFrameOne == lights_[i].fromFrameOne;
   }
   if (same) return;
   lights_ = lights;

@@ -64,15 +64,22 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
     return a.rank < b.rank || (a.rank == b.rank && a.light < b.light);
   });
 
-  // Algorithm 1 over frames [start, m].
+  // Algorithm 1 over frames [start, m]; the environment's own lights over [1, m].
   const int start = directStartFrame(m, s.directDelay, darkEnvironment);
-  const double numFrames = m - start + 1;
-  const double framesPerSample = numFrames / static_cast<double>(all.size());
-  double index = start;
-  for (const Pending& p : all) {
-    int frame = std::min(static_cast<int>(std::floor(index + 1e-9)), m);
-    plan[static_cast<size_t>(frame - 1)].lights.push_back(p.sample);
-    index += framesPerSample;
+  for (const bool early : {false, true}) {
+    std::vector<const Pending*> group;
+    for (const Pending& p : all) {
+      if (lights[static_cast<size_t>(p.light)].fromFrameOne == early) group.push_back(&p);
+    }
+    if (group.empty()) continue;
+    const int first = early ? 1 : start;
+    const double framesPerSample = (m - first + 1) / static_cast<double>(group.size());
+    double index = first;
+    for (const Pending* p : group) {
+      const int frame = std::min(static_cast<int>(std::floor(index + 1e-9)), m);
+      plan[static_cast<size_t>(frame - 1)].lights.push_back(p->sample);
+      index += framesPerSample;
+    }
   }
   return plan;
 }

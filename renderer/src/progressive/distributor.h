@@ -18,6 +18,9 @@ namespace penumbra::progressive {
 struct LightInfo {
   LightShape shape = LightShape::Rect;
   float aspect = 1.0f;  // rect width / height
+  // Part of the environment (its sun): samples from frame 1 on, centre first, so frame 1, the
+  // frame shown while navigating, is not missing the light the cube map gave up to it.
+  bool fromFrameOne = false;
 };
 
 // Samples per light when ProgressiveSettings::lightSamples is 0.

@@ -171,6 +171,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   void setLights() {
     lights = sceneLights;
     if (sun) lights.push_back(render::sunLight(*sun, settings));
+    const size_t sunIndex = sun ? lights.size() - 1 : lights.size();
     std::vector<progressive::LightInfo> infos;
     for (const Light& l : lights) {
       progressive::LightInfo info;
@@ -180,6 +181,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
                        ? progressive::LightShape::Disk
                        : progressive::LightShape::Point;
       info.aspect = l.height > 0 ? l.width / l.height : 1.0f;
+      info.fromFrameOne = infos.size() == sunIndex;
       infos.push_back(info);
     }
     controller.setLights(infos);
