@@ -20,7 +20,9 @@ float sampleShadowMap(int index, vec3 coord) {
 }
 
 // Point lights: cube maps rendered once per scene (passes/point_shadow_pass.h), compared
-// against the depth the face's 90-degree projection gives the receiver.
+// against the depth the face's 90-degree projection gives the receiver. Only the variants with
+// punctual lights have them: the branch alone costs llvmpipe about 5 % of an area-light frame.
+#if PN_PUNCTUAL
 uniform highp samplerCubeShadow uPointShadow0;
 uniform highp samplerCubeShadow uPointShadow1;
 uniform vec4 uPointShadowPos[PN_MAX_POINT_SHADOWS];     // xyz light position
@@ -41,10 +43,13 @@ float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
   vec4 c = vec4(v, ndc * 0.5 + 0.5);
   return index == 0 ? texture(uPointShadow0, c) : texture(uPointShadow1, c);
 }
+#endif
 
 // index >= 0: shadow map `index`; -1: unshadowed; <= -2: point-light cube map -2 - index.
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
+#if PN_PUNCTUAL
   if (index <= -2) return pointShadowVisibility(-2 - index, worldPos, normal);
+#endif
   if (index < 0) return 1.0;
   // Normal-offset bias grows with the texel footprint, which grows with distance.
   float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);
