@@ -9,7 +9,7 @@ BENCH="$2/tools/bench-prefilter/penumbra-bench-prefilter"
 out=$("$BENCH" --process --repeat 2 --width 64 --size 16 --samples 8 2>&1) || {
   echo "FAIL: exit $?: $out"; exit 1; }
 echo "$out"
-grep -Eq '^  seconds: best [0-9.]+, mean [0-9.]+ over 2 runs' <<<"$out" || { echo "FAIL: no timing line"; exit 1; }
+grep -Eq '^  seconds: best [0-9.]+, median [0-9.]+, mean [0-9.]+ over 2 runs' <<<"$out" || { echo "FAIL: no timing line"; exit 1; }
 grep -Eq '^  peak RSS: [0-9.]+ MiB' <<<"$out" || { echo "FAIL: no peak RSS line"; exit 1; }
 err=$("$BENCH" --prefilter /nonexistent/penumbra-prefilter --repeat 1 --width 64 --size 16 2>&1)
 rc=$?

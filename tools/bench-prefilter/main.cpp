@@ -107,6 +107,7 @@ int benchProcess(const std::string& prefilter, const penumbra::Image& panorama, 
     return 1;
   }
   double best = 1e30, total = 0.0, peak = 0.0;
+  std::vector<double> times;
   for (int r = 0; r < repeat; ++r) {
     const ProcessRun run =
         runProcess({prefilter, input, "-o", (dir / "out").string(), "--size", std::to_string(size),
@@ -119,13 +120,19 @@ int benchProcess(const std::string& prefilter, const penumbra::Image& panorama, 
     }
     best = std::min(best, run.seconds);
     total += run.seconds;
+    times.push_back(run.seconds);
     peak = std::max(peak, run.peakMiB);
   }
   fs::remove_all(dir);
   std::printf("whole process: %s %dx%d EXR -o DIR --size %d --samples %d\n", prefilter.c_str(),
               panorama.width, panorama.height, size, samples);
-  std::printf("  seconds: best %.3f, mean %.3f over %d runs (start-up to exit)\n", best,
-              total / repeat, repeat);
+  // The median too: on a shared machine a few slow runs move the mean a lot.
+  std::sort(times.begin(), times.end());
+  const double median = times.size() % 2
+                            ? times[times.size() / 2]
+                            : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+  std::printf("  seconds: best %.3f, median %.3f, mean %.3f over %d runs (start-up to exit)\n",
+              best, median, total / repeat, repeat);
   std::printf("  peak RSS: %.1f MiB (largest of the runs)\n", peak);
   return 0;
 }
