@@ -68,6 +68,17 @@ void main() {
   // white furnace reflects exactly the environment.
   diffuseColor *= vec3(1.0) - specularScale;
 
+  // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on the geometric normal
+  // (its own normal texture is not sampled). The base below gets what the coat lets through,
+  // 1 - coat F(n.v), as the extension defines.
+  float coat = uClearcoat;
+  vec3 coatN = normalize(vNormal);
+  if (dot(coatN, n) < 0.0) coatN = -coatN;
+  float coatNoV = max(dot(coatN, v), 1e-4);
+  float coatRoughness = clamp(uClearcoatRoughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  float coatAlpha = coatRoughness * coatRoughness;
+  float baseScale = 1.0 - coat * F_Schlick(vec3(0.04), coatNoV).x;
+
   vec3 color = vec3(0.0);
 
   // Environment.
@@ -95,8 +106,14 @@ void main() {
       }
     }
 #endif
-    color += uEnvWeight * s.occlusion *
+    color += uEnvWeight * s.occlusion * baseScale *
              (diffuseColor * irradiance * INV_PI + prefiltered * specularScale);
+    if (coat > 0.0) {
+      vec3 coatDfg = dfg(coatNoV, coatRoughness);
+      vec3 coatPrefiltered = envRadiance(reflect(-v, coatN), coatRoughness);
+      color += uEnvWeight * s.occlusion * coat * coatPrefiltered *
+               (0.04 * coatDfg.x + coatDfg.y);
+    }
   }
 
 #if PN_AREA
@@ -104,6 +121,8 @@ void main() {
   // its samples, so it is computed once and only the shadow-map visibility differs.
   float irradiance = 0.0;
   vec3 specular = vec3(0.0);
+  float coatIrradiance = 0.0;
+  vec3 coatSpecular = vec3(0.0);
   for (int i = 0; i < MAX_AREA; ++i) {
     if (i >= uAreaCount) break;
     if (i == 0 || uAreaLight[i] != uAreaLight[i - 1]) {
@@ -115,10 +134,15 @@ void main() {
       L.size = uAreaShape[i].xy;
       L.disk = uAreaShape[i].z > 0.5;
       evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
+      if (coat > 0.0) {
+        evaluateAreaLight(L, vWorldPos, coatN, v, vec3(0.04), 1.0, coatAlpha, coatIrradiance,
+                          coatSpecular);
+      }
     }
-    if (irradiance <= 0.0) continue;
+    if (irradiance <= 0.0 && coatIrradiance <= 0.0) continue;
     float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
-    color += uAreaRadiance[i] * visibility * (diffuseColor * irradiance * INV_PI + specular);
+    color += uAreaRadiance[i] * visibility *
+             (baseScale * (diffuseColor * irradiance * INV_PI + specular) + coat * coatSpecular);
   }
 #endif
 #if PN_PUNCTUAL
@@ -149,25 +173,15 @@ void main() {
       }
     }
     float NoL = dot(n, l);
-    if (NoL <= 0.0) continue;
+    if (NoL <= 0.0 && (coat <= 0.0 || dot(coatN, l) <= 0.0)) continue;
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
-    vec3 e = uPunctualColor[i] * attenuation * NoL;
-    vec3 specular = specularBrdf(n, v, l, f0, f90, alpha, 1.0);
-    float tanRadius = uPunctualDisk[i].w;
-    if (tanRadius > 0.0) {
-      // A disk at infinity (the sun): Karis' representative point, the direction within the
-      // disk closest to the reflection ray, with the lobe widened and renormalised as for
-      // area lights. The jittered sample direction above only places the shadow: its point
-      // highlight would converge to a scatter of dots on smooth surfaces, not to the disk.
-      vec3 centre = -uPunctualDisk[i].xyz;
-      vec3 r = reflect(-v, n);
-      vec3 toRay = dot(centre, r) * r - centre;
-      vec3 lr = normalize(centre + toRay * min(1.0, tanRadius / max(length(toRay), 1e-6)));
-      float widened = min(1.0, alpha + 0.5 * tanRadius);
-      float norm = (alpha / widened) * (alpha / widened);
-      specular = specularBrdf(n, v, lr, f0, f90, alpha, norm) * saturate(dot(n, lr)) / NoL;
+    vec3 e = uPunctualColor[i] * attenuation;
+    vec3 base = diffuseColor * (max(NoL, 0.0) * INV_PI) +
+                punctualSpecular(n, v, l, f0, f90, alpha, uPunctualDisk[i]);
+    color += e * baseScale * base;
+    if (coat > 0.0) {
+      color += e * coat * punctualSpecular(coatN, v, l, vec3(0.04), 1.0, coatAlpha, uPunctualDisk[i]);
     }
-    color += e * (diffuseColor * INV_PI + specular);
   }
 
 #endif

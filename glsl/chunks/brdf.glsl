@@ -29,6 +29,26 @@ vec3 F_Schlick(vec3 f0, float f90, float VoH) {
 
 // Specular BRDF value (no cosine) for light direction l; `norm` scales D for area lights
 // (Karis' energy normalisation of the widened lobe).
+vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float norm);
+
+// Specular reflected by a punctual light of unit irradiance at normal incidence arriving
+// along l: f_s(l) (n.l). disk.w > 0 makes it a disk at infinity (the sun, directional lights:
+// disk.xyz its centre's direction of travel, disk.w tan(angular radius)), shaded with Karis'
+// representative point, the direction within the disk closest to the reflection ray, and the
+// lobe widened and renormalised as for area lights: the jittered sample direction l only
+// places the shadow, and its point highlight would converge to a scatter of dots on smooth
+// surfaces, not to the disk.
+vec3 punctualSpecular(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
+  if (disk.w <= 0.0) return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
+  vec3 centre = -disk.xyz;
+  vec3 r = reflect(-v, n);
+  vec3 toRay = dot(centre, r) * r - centre;
+  vec3 lr = normalize(centre + toRay * min(1.0, disk.w / max(length(toRay), 1e-6)));
+  float widened = min(1.0, alpha + 0.5 * disk.w);
+  float norm = (alpha / widened) * (alpha / widened);
+  return specularBrdf(n, v, lr, f0, f90, alpha, norm) * max(dot(n, lr), 0.0);
+}
+
 vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float norm) {
   vec3 h = normalize(v + l);
   float NoV = max(dot(n, v), 1e-4);

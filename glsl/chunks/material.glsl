@@ -14,6 +14,9 @@ uniform float uAlphaCutoff;
 uniform vec3 uDielectricF0;
 uniform float uDielectricF90;
 uniform int uUnlit;
+// KHR_materials_clearcoat (factors): layer strength and perceptual roughness.
+uniform float uClearcoat;
+uniform float uClearcoatRoughness;
 uniform int uTextureMask;   // bit i: slot i has a texture
 uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
 uniform mat3 uUvTransform[5];

@@ -72,6 +72,29 @@ TEST_F(MaterialExtensionsGLTest, ReflectanceFollowsIorAndSpecularColour) {
   EXPECT_LT(none.g, 1e-3f);
 }
 
+TEST_F(MaterialExtensionsGLTest, ClearcoatAddsALayerAndKeepsTheFurnace) {
+  // A coat over a white base still reflects the white environment (what the coat reflects,
+  // the base below does not get: 1 - coat F(n.v)), and over a black base it adds a glossy
+  // reflection of its own, scaled by its strength.
+  for (float rough : {0.0f, 0.5f}) {
+    Material m = lambert(glm::vec3(1.0f));
+    m.clearcoat = 1.0f;
+    m.clearcoatRoughness = rough;
+    const glm::vec3 c = sphereUnderUniformSky(m, glm::vec3(1.0f));
+    EXPECT_NEAR(c.g, 1.0f, 0.03f) << "coat roughness " << rough;
+  }
+  Material black = lambert(glm::vec3(0.0f));
+  black.specularFactor = 0.0f;  // no base reflection: what remains is the coat's
+  const glm::vec3 bare = sphereUnderUniformSky(black, glm::vec3(1.0f));
+  black.clearcoat = 1.0f;
+  const glm::vec3 full = sphereUnderUniformSky(black, glm::vec3(1.0f));
+  black.clearcoat = 0.5f;
+  const glm::vec3 half = sphereUnderUniformSky(black, glm::vec3(1.0f));
+  EXPECT_LT(bare.g, 1e-3f);
+  EXPECT_GT(full.g, 0.04f) << "at least F0 everywhere, more at grazing angles";
+  EXPECT_NEAR(half.g, 0.5f * full.g, 0.02f * full.g);
+}
+
 TEST_F(MaterialExtensionsGLTest, UnlitShowsItsBaseColour) {
   Material m = lambert(glm::vec3(0.2f, 0.5f, 0.8f));
   m.unlit = true;

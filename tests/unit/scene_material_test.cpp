@@ -161,11 +161,12 @@ TEST(SceneGltfMaterial, DefaultsAndAlphaModes) {
   EXPECT_TRUE(hasWarning(*scene, "SHINY"));
 }
 
-TEST(SceneGltfMaterial, IorSpecularAndUnlitExtensions) {
+TEST(SceneGltfMaterial, IorSpecularClearcoatAndUnlitExtensions) {
   GltfBuilder b;
   b.useExtension("KHR_materials_ior");
   b.useExtension("KHR_materials_specular");
   b.useExtension("KHR_materials_unlit");
+  b.useExtension("KHR_materials_clearcoat");
   auto ext = [&](json e) { b.push("materials", {{"extensions", e}}); };
   ext(json::object());                           // 0: defaults
   ext({{"KHR_materials_ior", {{"ior", 2.0}}}});  // 1
@@ -176,12 +177,16 @@ TEST(SceneGltfMaterial, IorSpecularAndUnlitExtensions) {
   ext({{"KHR_materials_specular",  // 5: clamped, texture
         {{"specularFactor", 2.0}, {"specularTexture", {{"index", 0}}}}}});
   ext({{"KHR_materials_unlit", json::object()}});  // 6
+  ext({{"KHR_materials_clearcoat",                 // 7
+        {{"clearcoatFactor", 0.8},
+         {"clearcoatRoughnessFactor", 1.5},
+         {"clearcoatNormalTexture", {{"index", 0}}}}}});
   b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
   b.push("textures", {{"source", 0}});
   auto scene = b.load();
   ASSERT_TRUE(scene.ok()) << scene.message();
   const auto& m = scene->materials;
-  ASSERT_EQ(m.size(), 7u);
+  ASSERT_EQ(m.size(), 8u);
   EXPECT_FLOAT_EQ(m[0].ior, 1.5f);
   EXPECT_NEAR(m[0].dielectricF0().x, 0.04f, 1e-6f);
   EXPECT_FALSE(m[0].unlit);
@@ -198,6 +203,11 @@ TEST(SceneGltfMaterial, IorSpecularAndUnlitExtensions) {
   EXPECT_TRUE(hasWarning(*scene, "specularFactor: outside [0, 1]"));
   EXPECT_TRUE(hasWarning(*scene, "specularTexture is not sampled"));
   EXPECT_TRUE(m[6].unlit);
+  EXPECT_FLOAT_EQ(m[0].clearcoat, 0.0f);
+  EXPECT_FLOAT_EQ(m[7].clearcoat, 0.8f);
+  EXPECT_FLOAT_EQ(m[7].clearcoatRoughness, 1.0f);
+  EXPECT_TRUE(hasWarning(*scene, "clearcoatRoughnessFactor: outside [0, 1]"));
+  EXPECT_TRUE(hasWarning(*scene, "clearcoatNormalTexture is not sampled"));
   // None of the three is reported as ignored.
   for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }

@@ -86,6 +86,8 @@ struct Material {
   float specularFactor = 1.0f;          // KHR_materials_specular (factors; textures ignored)
   glm::vec3 specularColorFactor{1.0f};  // KHR_materials_specular
   bool unlit = false;                   // KHR_materials_unlit
+  float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors; textures ignored)
+  float clearcoatRoughness = 0.0f;
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;

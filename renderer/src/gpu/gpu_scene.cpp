@@ -197,6 +197,8 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uDielectricF0", m.dielectricF0());
   program.set("uDielectricF90", m.specularFactor);
   program.set("uUnlit", m.unlit ? 1 : 0);
+  program.set("uClearcoat", m.clearcoat);
+  program.set("uClearcoatRoughness", m.clearcoatRoughness);
   const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
                                &m.occlusionTexture, &m.emissiveTexture};
   static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",

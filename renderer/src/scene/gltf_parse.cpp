@@ -69,6 +69,19 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
     }
   }
   if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
+  if (const json* e = p.object(ext, "KHR_materials_clearcoat", path)) {
+    const std::string ep = path + ".KHR_materials_clearcoat";
+    const double c = p.number(*e, "clearcoatFactor", ep, 0.0);
+    const double r = p.number(*e, "clearcoatRoughnessFactor", ep, 0.0);
+    if (c < 0.0 || c > 1.0) ctx.warn(ep + ".clearcoatFactor: outside [0, 1]; clamped");
+    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
+    m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
+    m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    for (const char* t :
+         {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
 }
 
 LightType areaType(const std::string& s) {
