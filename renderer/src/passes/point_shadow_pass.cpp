@@ -23,12 +23,9 @@ Result<gl::TextureCube> depthCube(int size) {
 
 Result<PointShadowPass> PointShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
   PointShadowPass pass;
-  auto program = library.program("shadow.vert", "shadow.frag");
-  if (!program) return program.error();
-  pass.program_ = *program;
-  auto alphaProgram = library.program("mesh.vert", "shadow_alpha.frag");
-  if (!alphaProgram) return alphaProgram.error();
-  pass.alphaProgram_ = *alphaProgram;
+  auto programs = shadowCasterPrograms(library);
+  if (!programs) return programs.error();
+  pass.programs_ = *programs;
   pass.size_ = mapSize;
   for (auto& map : pass.maps_) {
     auto cube = depthCube(1);
@@ -78,7 +75,7 @@ Result<PointShadowView> PointShadowPass::ensure(int index, const GpuScene& scene
     gl::setViewport(0, 0, size_, size_);
     gl::clearDepth(1.0f);
     const glm::mat4 view = glm::lookAt(position, position + kAxis[face], kUp[face]);
-    drawShadowCasters(*program_, *alphaProgram_, scene, proj * view, 0, 1);
+    drawShadowCasters(programs_, scene, proj * view, 0, 1);
   }
   views_[k].position = glm::vec4(position, 1.0f);
   // A texel spans 2 / size in tangent at unit distance; offset by 1.5 of them, as ShadowPass.

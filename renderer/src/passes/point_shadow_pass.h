@@ -15,6 +15,7 @@
 #include "gl/texture.h"
 #include "gpu/gpu_scene.h"
 #include "passes/limits.h"
+#include "passes/shadow_pass.h"
 
 namespace penumbra::passes {
 
@@ -37,8 +38,7 @@ class PointShadowPass {
   void bind(const gl::Program& program, int firstUnit) const;
 
  private:
-  gl::Program* program_ = nullptr;
-  gl::Program* alphaProgram_ = nullptr;
+  ShadowCasterPrograms programs_;
   int size_ = 0;
   std::array<gl::TextureCube, kMaxPointShadows> maps_;
   std::array<bool, kMaxPointShadows> valid_{};

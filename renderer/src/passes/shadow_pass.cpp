@@ -62,14 +62,19 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
   return shadowView(proj, view, radius, 2.0f * tanHalf / static_cast<float>(mapSize));
 }
 
-Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
-  ShadowPass pass;
+Result<ShadowCasterPrograms> shadowCasterPrograms(gl::ShaderLibrary& library) {
   auto program = library.program("shadow.vert", "shadow.frag");
   if (!program) return program.error();
-  pass.program_ = *program;
   auto alphaProgram = library.program("mesh.vert", "shadow_alpha.frag");
   if (!alphaProgram) return alphaProgram.error();
-  pass.alphaProgram_ = *alphaProgram;
+  return ShadowCasterPrograms{*program, *alphaProgram};
+}
+
+Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
+  ShadowPass pass;
+  auto programs = shadowCasterPrograms(library);
+  if (!programs) return programs.error();
+  pass.programs_ = *programs;
   pass.size_ = mapSize;
   for (int i = 0; i < kMaxShadowMaps; ++i) {
     auto tex = gl::Texture2D::create({.width = mapSize,
@@ -116,11 +121,11 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView&
   framebuffers_[static_cast<size_t>(slot)].bind();
   gl::setViewport(0, 0, size_, size_);
   gl::clearDepth(1.0f);
-  drawShadowCasters(*program_, *alphaProgram_, scene, viewProj, coverageFrame, coverageStream);
+  drawShadowCasters(programs_, scene, viewProj, coverageFrame, coverageStream);
   return sv;
 }
 
-void drawShadowCasters(gl::Program& opaque, gl::Program& alphaProgram, const GpuScene& scene,
+void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& scene,
                        const glm::mat4& viewProj, int coverageFrame, int coverageStream) {
   // Both faces cast: open meshes and single-sided walls must still block light.
   gl::apply({.depthTest = gl::DepthTest::Less,
@@ -131,7 +136,7 @@ void drawShadowCasters(gl::Program& opaque, gl::Program& alphaProgram, const Gpu
              .polygonOffsetUnits = 2.0f});
   // Opaque surfaces first with the position-only program, then those that need their alpha.
   for (const bool alpha : {false, true}) {
-    gl::Program& program = alpha ? alphaProgram : opaque;
+    gl::Program& program = alpha ? *programs.alpha : *programs.opaque;
     bool used = false;
     for (const auto* list : {&scene.opaque(), &scene.blended()}) {
       for (const DrawItem& item : *list) {

@@ -30,9 +30,16 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
 ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& sceneBounds,
                                     int mapSize);
 
-// Draws every shadow caster of the scene into the bound depth target with the given view:
-// opaque surfaces with `opaque` (positions only), MASK and BLEND ones with `alpha`.
-void drawShadowCasters(gl::Program& opaque, gl::Program& alpha, const GpuScene& scene,
+// The two programs that draw shadow casters: opaque surfaces (positions only), and MASK and
+// BLEND ones (the material's alpha).
+struct ShadowCasterPrograms {
+  gl::Program* opaque = nullptr;
+  gl::Program* alpha = nullptr;
+};
+Result<ShadowCasterPrograms> shadowCasterPrograms(gl::ShaderLibrary& library);
+
+// Draws every shadow caster of the scene into the bound depth target with the given view.
+void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& scene,
                        const glm::mat4& viewProj, int coverageFrame, int coverageStream);
 
 class ShadowPass {
@@ -51,8 +58,7 @@ class ShadowPass {
   int mapSize() const { return size_; }
 
  private:
-  gl::Program* program_ = nullptr;       // opaque surfaces: positions only
-  gl::Program* alphaProgram_ = nullptr;  // MASK and BLEND surfaces: the material's alpha
+  ShadowCasterPrograms programs_;
   int size_ = 0;
   std::array<gl::Texture2D, kMaxShadowMaps> maps_;
   std::array<gl::Framebuffer, kMaxShadowMaps> framebuffers_;
