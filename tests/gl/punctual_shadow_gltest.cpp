@@ -19,14 +19,7 @@ struct Render {
   Image image;
   CameraMatrices camera;
   // Radiance (mean of RGB) of the floor at world point p.
-  float at(glm::vec3 p) const {
-    const glm::vec4 c = camera.projection * camera.view * glm::vec4(p, 1.0f);
-    const glm::vec2 ndc = glm::vec2(c) / c.w;
-    const int x = static_cast<int>((ndc.x * 0.5f + 0.5f) * kSize);
-    const int y = static_cast<int>((0.5f - ndc.y * 0.5f) * kSize);  // row 0 at the top
-    const float* px = image.pixel(std::clamp(x, 0, kSize - 1), std::clamp(y, 0, kSize - 1));
-    return (px[0] + px[1] + px[2]) / 3.0f;
-  }
+  float at(glm::vec3 p) const { return radianceAt(image, camera.projection * camera.view, p); }
 };
 
 Render renderWith(const Light& light, bool boxCastsShadow = true) {

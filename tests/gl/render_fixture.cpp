@@ -1,5 +1,6 @@
 #include "render_fixture.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -135,6 +136,29 @@ double rmse(const Image& a, const Image& b) {
     }
   }
   return std::sqrt(sum / static_cast<double>(std::max<size_t>(n, 1)));
+}
+
+}  // namespace penumbra::test
+
+namespace penumbra::test {
+
+float radianceAt(const Image& image, const glm::mat4& viewProj, glm::vec3 p, bool bilinear) {
+  const glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+  const glm::vec2 ndc = glm::vec2(c) / c.w;
+  const int w = image.width, h = image.height;
+  const float x = (ndc.x * 0.5f + 0.5f) * static_cast<float>(w);
+  const float y = (0.5f - ndc.y * 0.5f) * static_cast<float>(h);  // row 0 at the top
+  const auto v = [&](int i, int j) {
+    const float* px = image.pixel(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1));
+    return (px[0] + px[1] + px[2]) / 3.0f;
+  };
+  if (!bilinear) return v(static_cast<int>(x), static_cast<int>(y));
+  const float cx = x - 0.5f, cy = y - 0.5f;
+  const int x0 = static_cast<int>(std::floor(cx)), y0 = static_cast<int>(std::floor(cy));
+  const float fx = std::clamp(cx - static_cast<float>(x0), 0.0f, 1.0f);
+  const float fy = std::clamp(cy - static_cast<float>(y0), 0.0f, 1.0f);
+  return (1 - fy) * ((1 - fx) * v(x0, y0) + fx * v(x0 + 1, y0)) +
+         fy * ((1 - fx) * v(x0, y0 + 1) + fx * v(x0 + 1, y0 + 1));
 }
 
 }  // namespace penumbra::test

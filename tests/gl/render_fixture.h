@@ -31,4 +31,7 @@ namespace penumbra::test {
 Mesh sphereMesh(glm::vec3 c, float r, int material, int segments = 48);
 // RMSE over RGB of two images of equal size.
 double rmse(const Image& a, const Image& b);
+// Radiance (mean of RGB) of the image where world point p projects with viewProj: the pixel it
+// falls in, or bilinear between pixel centres (a profile not quantised to pixels).
+float radianceAt(const Image& image, const glm::mat4& viewProj, glm::vec3 p, bool bilinear = false);
 }  // namespace penumbra::test

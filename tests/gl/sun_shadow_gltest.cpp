@@ -52,21 +52,9 @@ PackedEnvironment sunEnvironment(const glm::vec3& dir, double radius) {
 struct Render {
   Image image;
   CameraMatrices camera;
+  // Bilinear, so the profile is not quantised to pixels.
   float at(glm::vec3 p) const {
-    const glm::vec4 c = camera.projection * camera.view * glm::vec4(p, 1.0f);
-    const glm::vec2 ndc = glm::vec2(c) / c.w;
-    const float x = (ndc.x * 0.5f + 0.5f) * kSize - 0.5f;
-    const float y = (0.5f - ndc.y * 0.5f) * kSize - 0.5f;
-    // Bilinear, so the profile is not quantised to pixels.
-    const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, kSize - 2);
-    const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, kSize - 2);
-    const float fx = std::clamp(x - x0, 0.0f, 1.0f), fy = std::clamp(y - y0, 0.0f, 1.0f);
-    const auto v = [&](int i, int j) {
-      const float* px = image.pixel(i, j);
-      return (px[0] + px[1] + px[2]) / 3.0f;
-    };
-    return (1 - fy) * ((1 - fx) * v(x0, y0) + fx * v(x0 + 1, y0)) +
-           fy * ((1 - fx) * v(x0, y0 + 1) + fx * v(x0 + 1, y0 + 1));
+    return radianceAt(image, camera.projection * camera.view, p, true);
   }
 };
 
