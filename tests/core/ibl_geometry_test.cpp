@@ -68,6 +68,20 @@ TEST(IblGeometryTest, TexelSolidAnglesSumToFourPi) {
   EXPECT_LT(texelSolidAngle(0, 0, 16), texelSolidAngle(8, 8, 16));
 }
 
+TEST(IblGeometryTest, SolidAngleTableMatchesPerTexelValuesExactly) {
+  // The prefilter's loops use the table; bit-identical output depends on exact equality.
+  for (int size : {1, 3, 16}) {
+    const std::vector<double> table = texelSolidAngles(size);
+    ASSERT_EQ(table.size(), static_cast<size_t>(size * size));
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        EXPECT_EQ(table[static_cast<size_t>(y) * size + x], texelSolidAngle(x, y, size))
+            << x << "," << y;
+      }
+    }
+  }
+}
+
 TEST(IblGeometryTest, PanoramaConventionIsDocumented) {
   expectDir(panoramaDirection(0.5f, 0.5f), {1, 0, 0}, "centre column = +X");
   expectDir(panoramaDirection(0.75f, 0.5f), {0, 0, 1}, "u = 0.75 = +Z");

@@ -67,6 +67,9 @@ CubeCoord cubeCoord(const glm::vec3& direction);
 
 // Exact solid angle of texel (x, y) on a face `size` texels wide; all texels sum to 4 pi.
 double texelSolidAngle(int x, int y, int size);
+// texelSolidAngle for every texel of a face, row-major: the same on all six faces, so loops
+// over whole cube maps compute it once instead of once per face (it costs four atan2).
+std::vector<double> texelSolidAngles(int size);
 
 // ---- Equirectangular panorama (2:1) ------------------------------------------------------------
 

@@ -185,6 +185,16 @@ double texelSolidAngle(int x, int y, int size) {
          solidAngleCorner(x1, y1);
 }
 
+std::vector<double> texelSolidAngles(int size) {
+  PN_CHECK(size > 0, "face size must be positive");
+  std::vector<double> omega(static_cast<size_t>(size) * size);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x)
+      omega[static_cast<size_t>(y) * size + x] = texelSolidAngle(x, y, size);
+  }
+  return omega;
+}
+
 glm::vec3 panoramaDirection(float u, float v) {
   const float phi = 2.0f * kPi * (u - 0.5f);
   const float elevation = kPi * (0.5f - v);
@@ -246,8 +256,10 @@ Result<std::string> radianceVerdict(const RadianceReport& r, const std::string& 
   add(r.negative, "negative");
   add(r.tooBright, "above 65504");
   if (r.replaced == r.pixels) {
-    return makeError(name + ": no usable radiance: every pixel is NaN, infinite, negative or "
-                            "above 65504 (" + kinds + ")");
+    return makeError(name +
+                     ": no usable radiance: every pixel is NaN, infinite, negative or "
+                     "above 65504 (" +
+                     kinds + ")");
   }
   return name + ": replaced " + std::to_string(r.replaced) + " of " + std::to_string(r.pixels) +
          " pixels (" + kinds + "; NaN and negative by 0, the rest by 65504)";

@@ -65,11 +65,12 @@ void TexelSet::add(const glm::vec3& direction, float solidAngle, const float rgb
 TexelSet texelsOf(const CubeLevel& level) {
   TexelSet set;
   const int s = level[0].width;
+  const std::vector<double> omega = texelSolidAngles(s);
   for (int f = 0; f < kFaceCount; ++f) {
     for (int y = 0; y < s; ++y) {
       for (int x = 0; x < s; ++x) {
-        set.add(texelDirection(f, x, y, s), static_cast<float>(texelSolidAngle(x, y, s)),
-                level[f].pixel(x, y));
+        set.add(texelDirection(f, x, y, s),
+                static_cast<float>(omega[static_cast<size_t>(y) * s + x]), level[f].pixel(x, y));
       }
     }
   }
@@ -145,11 +146,12 @@ TexelSet splitBrightTexels(const CubeLevel& base, CubeLevel& clipped, size_t max
   // The clip: 8 x the mean luminance, raised until at most maxBright cells exceed it.
   std::vector<float> cellMax(static_cast<size_t>(kFaceCount) * cellSize * cellSize, 0.0f);
   double weighted = 0.0;
+  const std::vector<double> omegas = texelSolidAngles(s);
   for (int f = 0; f < kFaceCount; ++f) {
     for (int y = 0; y < s; ++y) {
       for (int x = 0; x < s; ++x) {
         const float l = luminance(base[f].pixel(x, y));
-        weighted += l * texelSolidAngle(x, y, s);
+        weighted += l * omegas[static_cast<size_t>(y) * s + x];
         float& m = cellMax[cellOf(f, x, y)];
         m = std::max(m, l);
       }
@@ -177,7 +179,7 @@ TexelSet splitBrightTexels(const CubeLevel& base, CubeLevel& clipped, size_t max
         const float l = luminance(p);
         if (!(l > clip)) continue;
         const float keep = clip / l;
-        const double omega = texelSolidAngle(x, y, s);
+        const double omega = omegas[static_cast<size_t>(y) * s + x];
         Cell& c = cells[cellOf(f, x, y)];
         const glm::dvec3 excess(p[0] * (1.0f - keep), p[1] * (1.0f - keep), p[2] * (1.0f - keep));
         c.energy += excess * omega;

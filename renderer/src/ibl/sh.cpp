@@ -34,6 +34,7 @@ ShCoefficients projectSh(const Cubemap& cube, int mip, int threads) {
   // One partial sum per face row, added up in a fixed order afterwards: the result does not
   // depend on the thread count. Doubles keep the 4 pi of a constant environment exact enough.
   std::vector<std::array<double, 27>> rows(static_cast<size_t>(kFaceCount) * n);
+  const std::vector<double> omega = texelSolidAngles(n);
   parallelFor(kFaceCount * n, threads, [&](int row) {
     const int face = row / n;
     const int y = row % n;
@@ -41,7 +42,7 @@ ShCoefficients projectSh(const Cubemap& cube, int mip, int threads) {
     sum.fill(0.0);
     const Image& image = cube.face(mip, face);
     for (int x = 0; x < n; ++x) {
-      const double w = texelSolidAngle(x, y, n);
+      const double w = omega[static_cast<size_t>(y) * n + x];
       const std::array<float, 9> basis = shBasis(texelDirection(face, x, y, n));
       const float* p = image.pixel(x, y);
       for (int i = 0; i < 9; ++i) {
