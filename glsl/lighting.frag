@@ -79,6 +79,14 @@ void main() {
   float coatAlpha = coatRoughness * coatRoughness;
   float baseScale = 1.0 - coat * F_Schlick(vec3(0.04), coatNoV).x;
 
+  // KHR_materials_sheen: a Charlie lobe over the base, which receives what the sheen does not
+  // reflect (glTF's albedo scaling, 1 - max(sheenColor) E(n.v)). Under the coat, like the base.
+  vec3 sheenColor = uSheenColor;
+  float sheenMax = max(sheenColor.r, max(sheenColor.g, sheenColor.b));
+  float sheenA = sheenAlpha(uSheenRoughness);
+  float sheenE = sheenMax > 0.0 ? sheenAlbedo(NoV, uSheenRoughness) : 0.0;
+  float sheenScale = 1.0 - sheenMax * sheenE;
+
   vec3 color = vec3(0.0);
 
   // Environment.
@@ -106,8 +114,11 @@ void main() {
       }
     }
 #endif
+    // The broad sheen lobe reflects the cosine-weighted environment (with this frame's
+    // occlusion sample), scaled by its albedo: exact in a white furnace.
     color += uEnvWeight * s.occlusion * baseScale *
-             (diffuseColor * irradiance * INV_PI + prefiltered * specularScale);
+             (sheenScale * (diffuseColor * irradiance * INV_PI + prefiltered * specularScale) +
+              sheenColor * (sheenE * INV_PI) * irradiance);
     if (coat > 0.0) {
       vec3 coatDfg = dfg(coatNoV, coatRoughness);
       vec3 coatPrefiltered = envRadiance(reflect(-v, coatN), coatRoughness);
@@ -123,6 +134,7 @@ void main() {
   vec3 specular = vec3(0.0);
   float coatIrradiance = 0.0;
   vec3 coatSpecular = vec3(0.0);
+  float sheenLight = 0.0;  // the sheen lobe's D V n.l toward the light's centre
   for (int i = 0; i < MAX_AREA; ++i) {
     if (i >= uAreaCount) break;
     if (i == 0 || uAreaLight[i] != uAreaLight[i - 1]) {
@@ -134,6 +146,14 @@ void main() {
       L.size = uAreaShape[i].xy;
       L.disk = uAreaShape[i].z > 0.5;
       evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
+      // Sheen: its lobe is broad, so the light's irradiance times the lobe's value D V toward
+      // the light's centre (irradiance already holds the cosine).
+      sheenLight = 0.0;
+      if (sheenMax > 0.0 && irradiance > 0.0) {
+        vec3 lc = normalize(L.position - vWorldPos);
+        float NoLc = dot(n, lc);
+        sheenLight = NoLc > 0.0 ? sheenBrdfCos(n, v, lc, sheenA) / NoLc : 0.0;
+      }
       if (coat > 0.0) {
         evaluateAreaLight(L, vWorldPos, coatN, v, vec3(0.04), 1.0, coatAlpha, coatIrradiance,
                           coatSpecular);
@@ -142,7 +162,9 @@ void main() {
     if (irradiance <= 0.0 && coatIrradiance <= 0.0) continue;
     float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
     color += uAreaRadiance[i] * visibility *
-             (baseScale * (diffuseColor * irradiance * INV_PI + specular) + coat * coatSpecular);
+             (baseScale * (sheenScale * (diffuseColor * irradiance * INV_PI + specular) +
+                           sheenColor * (sheenLight * irradiance)) +
+              coat * coatSpecular);
   }
 #endif
 #if PN_PUNCTUAL
@@ -178,6 +200,7 @@ void main() {
     vec3 e = uPunctualColor[i] * attenuation;
     vec3 base = diffuseColor * (max(NoL, 0.0) * INV_PI) +
                 punctualSpecular(n, v, l, f0, f90, alpha, uPunctualDisk[i]);
+    if (sheenMax > 0.0) base = sheenScale * base + sheenColor * sheenBrdfCos(n, v, l, sheenA);
     color += e * baseScale * base;
     if (coat > 0.0) {
       color += e * coat * punctualSpecular(coatN, v, l, vec3(0.04), 1.0, coatAlpha, uPunctualDisk[i]);

@@ -57,3 +57,46 @@ vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float
   float VoH = max(dot(v, h), 0.0);
   return D_GGX(NoH, alpha) * norm * V_SmithGGXCorrelated(NoV, NoL, alpha) * F_Schlick(f0, f90, VoH);
 }
+
+// KHR_materials_sheen: Charlie's distribution with Estevez & Kulla's visibility, the same
+// functions as ibl/sheen.cpp (which tabulates the lobe's directional albedo into the DFG
+// table's alpha).
+float sheenAlpha(float perceptualRoughness) {
+  float r = clamp(perceptualRoughness, 0.07, 1.0);
+  return r * r;
+}
+
+float sheenD(float NoH, float alpha) {
+  float sin2 = max(1.0 - NoH * NoH, 0.0);
+  float inv = 1.0 / alpha;
+  return (2.0 + inv) * pow(sin2, 0.5 * inv) / (2.0 * PI);
+}
+
+float sheenLambdaFit(float x, float alpha) {
+  float t = (1.0 - alpha) * (1.0 - alpha);
+  float a = mix(21.5473, 25.3245, t);
+  float b = mix(3.82987, 3.32435, t);
+  float c = mix(0.19823, 0.16801, t);
+  float d = mix(-1.97760, -1.27393, t);
+  float e = mix(-4.32054, -4.85967, t);
+  return a / (1.0 + b * pow(x, c)) + d * x + e;
+}
+
+float sheenLambda(float cosTheta, float alpha) {
+  return cosTheta < 0.5 ? exp(sheenLambdaFit(cosTheta, alpha))
+                        : exp(2.0 * sheenLambdaFit(0.5, alpha) - sheenLambdaFit(1.0 - cosTheta, alpha));
+}
+
+float sheenV(float NoV, float NoL, float alpha) {
+  NoV = max(NoV, 1e-4);
+  NoL = max(NoL, 1e-4);
+  return saturate(1.0 / ((1.0 + sheenLambda(NoV, alpha) + sheenLambda(NoL, alpha)) * 4.0 * NoV * NoL));
+}
+
+// The sheen lobe's D V (n.l) for light from l (0 below the horizon).
+float sheenBrdfCos(vec3 n, vec3 v, vec3 l, float alpha) {
+  float NoL = dot(n, l);
+  if (NoL <= 0.0) return 0.0;
+  float NoH = dot(n, normalize(v + l));
+  return sheenD(NoH, alpha) * sheenV(dot(n, v), NoL, alpha) * NoL;
+}

@@ -1,7 +1,8 @@
 // Split-sum environment lighting: irradiance from 9 SH coefficients (pre-convolved with the
 // clamped cosine on the CPU, so E(n) = sum c_i Y_i(n)), the GGX-prefiltered specular cube
 // (perceptual roughness r lives at mip r * (mips - 1)) and the DFG lookup table
-// (R = A, G = B, B = A + B = E_ss for multiple-scattering compensation).
+// (R = A, G = B, B = A + B = E_ss for multiple-scattering compensation; A = the sheen lobe's
+// directional albedo).
 uniform samplerCube uEnvSpecular;
 uniform sampler2D uDfgLut;
 uniform vec3 uShIrradiance[9];
@@ -31,4 +32,9 @@ vec3 envRadiance(vec3 dirWorld, float perceptualRoughness) {
 // (A, B, E_ss) for n.v and perceptual roughness.
 vec3 dfg(float NoV, float perceptualRoughness) {
   return textureLod(uDfgLut, vec2(NoV, perceptualRoughness), 0.0).rgb;
+}
+
+// The sheen lobe's directional albedo for n.v and sheen roughness (the table's alpha).
+float sheenAlbedo(float NoV, float sheenRoughness) {
+  return textureLod(uDfgLut, vec2(NoV, sheenRoughness), 0.0).a;
 }

@@ -17,6 +17,9 @@ uniform int uUnlit;
 // KHR_materials_clearcoat (factors): layer strength and perceptual roughness.
 uniform float uClearcoat;
 uniform float uClearcoatRoughness;
+// KHR_materials_sheen (factors): colour (0 = no sheen) and perceptual roughness.
+uniform vec3 uSheenColor;
+uniform float uSheenRoughness;
 uniform int uTextureMask;   // bit i: slot i has a texture
 uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
 uniform mat3 uUvTransform[5];

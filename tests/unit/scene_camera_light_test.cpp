@@ -261,6 +261,7 @@ TEST(SceneGltfExtensions, RequiredUnknownExtensionIsAnError) {
 TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   GltfBuilder b;
   b.useExtension("EXT_fancy_thing");
+  b.useExtension("KHR_materials_transmission");
   b.useExtension("KHR_materials_sheen");
   b.useExtension("KHR_materials_clearcoat");
   b.useExtension("KHR_texture_transform");
@@ -268,8 +269,9 @@ TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   auto scene = b.load();
   ASSERT_TRUE(scene.ok()) << scene.message();
   EXPECT_TRUE(hasWarning(*scene, "uses unsupported extension EXT_fancy_thing"));
-  EXPECT_TRUE(hasWarning(*scene, "KHR_materials_sheen"));
+  EXPECT_TRUE(hasWarning(*scene, "KHR_materials_transmission"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_clearcoat"));
+  EXPECT_FALSE(hasWarning(*scene, "KHR_materials_sheen"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_texture_transform"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_mesh_quantization"));
 }

@@ -212,6 +212,40 @@ TEST(SceneGltfMaterial, IorSpecularClearcoatAndUnlitExtensions) {
   for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }
 
+TEST(SceneGltfMaterial, SheenExtension) {
+  GltfBuilder b;
+  b.useExtension("KHR_materials_sheen");
+  auto ext = [&](json e) { b.push("materials", {{"extensions", e}}); };
+  ext(json::object());  // 0: no sheen
+  ext({{"KHR_materials_sheen",
+        {{"sheenColorFactor", {0.9, 0.5, 0.1}}, {"sheenRoughnessFactor", 0.4}}}});  // 1
+  ext({{"KHR_materials_sheen",  // 2: clamped, textures
+        {{"sheenColorFactor", {2.0, -1.0, 0.5}},
+         {"sheenRoughnessFactor", 3.0},
+         {"sheenColorTexture", {{"index", 0}}},
+         {"sheenRoughnessTexture", {{"index", 0}}}}}});
+  ext({{"KHR_materials_sheen", json::object()}});  // 3: the extension's defaults
+  b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
+  b.push("textures", {{"source", 0}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const auto& m = scene->materials;
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_EQ(m[0].sheenColor, glm::vec3(0.0f));
+  EXPECT_EQ(m[1].sheenColor, glm::vec3(0.9f, 0.5f, 0.1f));
+  EXPECT_FLOAT_EQ(m[1].sheenRoughness, 0.4f);
+  EXPECT_EQ(m[2].sheenColor, glm::vec3(1.0f, 0.0f, 0.5f));
+  EXPECT_FLOAT_EQ(m[2].sheenRoughness, 1.0f);
+  EXPECT_TRUE(
+      hasWarning(*scene, "materials[2].extensions.KHR_materials_sheen.sheenColorFactor: outside"));
+  EXPECT_TRUE(hasWarning(*scene, "sheenRoughnessFactor: outside [0, 1]"));
+  EXPECT_TRUE(hasWarning(*scene, "sheenColorTexture is not sampled"));
+  EXPECT_TRUE(hasWarning(*scene, "sheenRoughnessTexture is not sampled"));
+  EXPECT_EQ(m[3].sheenColor, glm::vec3(0.0f));
+  EXPECT_FLOAT_EQ(m[3].sheenRoughness, 0.0f);
+  for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
+}
+
 TEST(SceneGltfMaterial, OversizedImagesAreHalvedUntilTheyFit) {
   GltfBuilder b;
   b.push("images", {{"uri", pngDataUri(8, 4, {1, 0.5f, 0, 1})}});

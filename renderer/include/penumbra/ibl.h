@@ -258,4 +258,23 @@ glm::vec3 integrateDfg(float nDotV, float perceptualRoughness, int samples);
 // integrateDfg((i + 1/2) / size, (j + 1/2) / size).
 Image computeBrdfLut(const BrdfLutOptions& options = {});
 
+// ---- Sheen (KHR_materials_sheen) -------------------------------------------------------------
+// The Charlie distribution with Estevez & Kulla's visibility, as glTF defines the sheen lobe;
+// the shaders evaluate the same functions (glsl/chunks/brdf.glsl).
+
+// Perceptual sheen roughness -> alpha, with the floor the shaders use (sin^(1/alpha) overflows
+// below it and the lobe degenerates to a line at grazing angles).
+float sheenAlpha(float perceptualRoughness);
+// D(h) = (2 + 1/alpha) sin(theta_h)^(1/alpha) / (2 pi).
+float sheenD(float nDotH, float alpha);
+// Estevez & Kulla's visibility 1 / ((1 + Lambda(v) + Lambda(l)) 4 n.v n.l), clamped to [0, 1].
+float sheenV(float nDotV, float nDotL, float alpha);
+// Directional albedo E(n.v) = integral of D V n.l over the hemisphere (sheen colour 1), from
+// `samples` cosine-distributed directions, limited to 1: the model reflects a little more than
+// it receives at extreme grazing angles and low roughness, and glTF's albedo scaling of the
+// base, 1 - max(sheenColor) E, needs E <= 1 to stay physical.
+float integrateSheenAlbedo(float nDotV, float perceptualRoughness, int samples);
+// size x size, 1 channel, laid out as computeBrdfLut (x = n.v, y = sheen roughness).
+Image computeSheenLut(int size, int samples, int threads = 0);
+
 }  // namespace penumbra::ibl

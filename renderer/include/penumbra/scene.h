@@ -88,6 +88,8 @@ struct Material {
   bool unlit = false;                   // KHR_materials_unlit
   float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors; textures ignored)
   float clearcoatRoughness = 0.0f;
+  glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (factors; textures ignored): 0 = no sheen
+  float sheenRoughness = 0.0f;
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;

@@ -8,11 +8,28 @@
 namespace penumbra {
 namespace {
 
-// The DFG table depends on nothing but the BRDF: compute it once per process.
+// The DFG table depends on nothing but the BRDF: compute it once per process. Its alpha holds
+// the sheen lobe's directional albedo (KHR_materials_sheen), which needs no texture unit of its
+// own that way (the lighting shader uses all 16 of WebGL2's).
 const Image& dfgLut() {
   static Image lut;
   static std::once_flag once;
-  std::call_once(once, [] { lut = ibl::computeBrdfLut({.size = 64, .samples = 256}); });
+  std::call_once(once, [] {
+    const int size = 64;
+    const Image dfg = ibl::computeBrdfLut({.size = size, .samples = 256});
+    const Image sheen = ibl::computeSheenLut(size, 128);
+    lut = Image(size, size, 4);
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        const float* d = dfg.pixel(x, y);
+        float* p = lut.pixel(x, y);
+        p[0] = d[0];
+        p[1] = d[1];
+        p[2] = d[2];
+        p[3] = sheen.pixel(x, y)[0];
+      }
+    }
+  });
   return lut;
 }
 
@@ -43,7 +60,7 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
   const Image& lut = dfgLut();
   auto lutTex = gl::Texture2D::create({.width = lut.width,
                                        .height = lut.height,
-                                       .format = gl::PixelFormat::RGB16F,
+                                       .format = gl::PixelFormat::RGBA16F,
                                        .sampler = {.minFilter = gl::Filter::Linear}});
   if (!lutTex) return makeError("DFG table: " + lutTex.message());
   // The LUT image has row 0 = roughness near 0, which is what texture t = 0 should read.

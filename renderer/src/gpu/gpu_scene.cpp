@@ -199,6 +199,8 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uUnlit", m.unlit ? 1 : 0);
   program.set("uClearcoat", m.clearcoat);
   program.set("uClearcoatRoughness", m.clearcoatRoughness);
+  program.set("uSheenColor", m.sheenColor);
+  program.set("uSheenRoughness", m.sheenRoughness);
   const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
                                &m.occlusionTexture, &m.emissiveTexture};
   static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",

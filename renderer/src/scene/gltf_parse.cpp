@@ -82,6 +82,20 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
       if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
     }
   }
+  if (const json* e = p.object(ext, "KHR_materials_sheen", path)) {
+    const std::string ep = path + ".KHR_materials_sheen";
+    const glm::vec3 c = p.vec<3>(*e, "sheenColorFactor", ep, glm::vec3(0.0f));
+    const double r = p.number(*e, "sheenRoughnessFactor", ep, 0.0);
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      ctx.warn(ep + ".sheenColorFactor: outside [0, 1]; clamped");
+    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".sheenRoughnessFactor: outside [0, 1]; clamped");
+    m.sheenColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    m.sheenRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    for (const char* t : {"sheenColorTexture", "sheenRoughnessTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
 }
 
 LightType areaType(const std::string& s) {
