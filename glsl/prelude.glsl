@@ -6,6 +6,7 @@ precision highp int;
 precision highp sampler2D;
 precision highp samplerCube;
 precision highp sampler2DShadow;
+precision highp sampler2DArrayShadow;
 
 const float PI = 3.14159265358979;
 const float INV_PI = 0.31830988618379;

@@ -1,22 +1,14 @@
 // Shadow maps of this frame's area-light samples: each is rendered from one point on the
 // light's surface; a 2x2 hardware PCF lookup gives that sample's visibility.
-// GLSL ES 3.00 indexes sampler arrays only with constants, so the maps are separate samplers.
-#if PN_MAX_SHADOW_MAPS != 4
-#error "shadows.glsl samples exactly four shadow maps: update it with passes::kMaxShadowMaps"
-#endif
-uniform highp sampler2DShadow uShadowMap0;
-uniform highp sampler2DShadow uShadowMap1;
-uniform highp sampler2DShadow uShadowMap2;
-uniform highp sampler2DShadow uShadowMap3;
+// The maps are the layers of one depth texture array: one texture unit, and a layer index that
+// may vary (an array of samplers could only be indexed with constants, through a branch per map).
+uniform highp sampler2DArrayShadow uShadowMaps;
 uniform mat4 uShadowMatrix[PN_MAX_SHADOW_MAPS];  // world -> shadow texture space [0, 1]^3
 uniform vec4 uShadowParams[PN_MAX_SHADOW_MAPS];  // x: constant normal offset (world units), y: offset per
                                 // unit of distance from the light (about 1.5 texel angles)
 
 float sampleShadowMap(int index, vec3 coord) {
-  if (index == 0) return texture(uShadowMap0, coord);
-  if (index == 1) return texture(uShadowMap1, coord);
-  if (index == 2) return texture(uShadowMap2, coord);
-  return texture(uShadowMap3, coord);
+  return texture(uShadowMaps, vec4(coord.xy, float(index), coord.z));
 }
 
 // Point lights: cube maps rendered once per scene (passes/point_shadow_pass.h), compared

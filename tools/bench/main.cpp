@@ -41,6 +41,7 @@ struct Row {
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0, firstDisplayMs = 0;
   double firstLightingMs = 0, firstAccumulateMs = 0;
   int shadowPasses = 0;
+  int lightingPasses = 0;
 };
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown) {
@@ -74,6 +75,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
     row.lightingMs += f.lightingMs;
     row.accumulateMs += f.accumulateMs;
     row.shadowPasses += f.shadowPasses;
+    row.lightingPasses += f.lightingPasses;
   };
   // A frame is ready for display once it is accumulated and tone-mapped (what the web viewer
   // presents); reading it back into CPU memory is timed apart, as the CLI's extra cost.
@@ -148,12 +150,13 @@ int main(int argc, char** argv) {
       if (breakdown) {
         const double n = frames;
         std::printf(
-            "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f, "
-            "accumulate %.1f; frame 1: lighting %.1f, accumulate %.1f, tone map %.1f | | | | | | | "
+            "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f (%d "
+            "passes), accumulate %.1f; frame 1: lighting %.1f, accumulate %.1f, tone map %.1f | | "
+            "| | | | | "
             "|\n",
             row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
-            row->accumulateMs / n, row->firstLightingMs, row->firstAccumulateMs,
-            row->firstDisplayMs);
+            row->lightingPasses, row->accumulateMs / n, row->firstLightingMs,
+            row->firstAccumulateMs, row->firstDisplayMs);
       }
       std::fflush(stdout);
     }

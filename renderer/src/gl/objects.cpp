@@ -208,6 +208,12 @@ void Framebuffer::attachDepth(const Texture2D& texture) {
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, texture.id(), 0);
 }
 
+void Framebuffer::attachDepth(const Texture2DArray& array, int layer) {
+  PN_CHECK(layer >= 0 && layer < array.layers(), "texture array layer out of range");
+  bind();
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, array.id(), 0, layer);
+}
+
 void Framebuffer::attachDepth(const TextureCube& cube, int face) {
   bind();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face,

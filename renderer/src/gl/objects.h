@@ -84,6 +84,8 @@ class Framebuffer {
   void attachColor(int index, const Texture2D& texture, int level = 0);
   void attachColor(int index, const TextureCube& cube, int face, int level);
   void attachDepth(const Texture2D& texture);
+  // One layer of a depth texture array.
+  void attachDepth(const Texture2DArray& array, int layer);
   void attachDepth(const Renderbuffer& renderbuffer);
   // One face (0..5, GL order) of a depth cube map: a point light's shadow.
   void attachDepth(const TextureCube& cube, int face);

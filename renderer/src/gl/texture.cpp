@@ -190,6 +190,37 @@ void Texture2D::bind(int unit) const {
   glBindTexture(GL_TEXTURE_2D, handle_.id());
 }
 
+Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layers) {
+  PN_TRY(validate(desc, false));
+  GLint maxLayers = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  if (layers < 1 || layers > maxLayers) {
+    return makeError("texture array layer count " + std::to_string(layers) + " is outside 1.." +
+                     std::to_string(maxLayers));
+  }
+  clearErrors();
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  Texture2DArray t;
+  t.handle_ = Handle<deleteTexture>(id);
+  t.desc_ = desc;
+  t.layers_ = layers;
+  glBindTexture(GL_TEXTURE_2D_ARRAY, id);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, desc.levels, info(desc.format).internal, desc.width,
+                 desc.height, layers);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
+  applySampler(GL_TEXTURE_2D_ARRAY, desc.sampler);
+  PN_TRY(checkError("allocating a " + std::to_string(desc.width) + "x" +
+                    std::to_string(desc.height) + "x" + std::to_string(layers) + " " +
+                    formatName(desc.format) + " texture array"));
+  return t;
+}
+
+void Texture2DArray::bind(int unit) const {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, handle_.id());
+}
+
 Result<TextureCube> TextureCube::create(const TextureDesc& desc) {
   PN_TRY(validate(desc, true));
   clearErrors();

@@ -1,5 +1,5 @@
-// Texture2D and TextureCube: move-only owners of GL textures with explicit formats, mip levels
-// and sampling state. Formats are limited to what OpenGL ES 3.0 / WebGL2 offer.
+// Texture2D, Texture2DArray and TextureCube: move-only owners of GL textures with explicit formats,
+// mip levels and sampling state. Formats are limited to what OpenGL ES 3.0 / WebGL2 offer.
 #pragma once
 
 #include <cstdint>
@@ -68,6 +68,28 @@ class Texture2D {
  private:
   Handle<deleteTexture> handle_;
   TextureDesc desc_;
+};
+
+// Layers of equal size and format behind one sampler (sampler2DArray / sampler2DArrayShadow):
+// one texture unit for what would otherwise take one per texture.
+class Texture2DArray {
+ public:
+  Texture2DArray() = default;
+  static Result<Texture2DArray> create(const TextureDesc& desc, int layers);
+
+  void bind(int unit) const;
+
+  GLuint id() const { return handle_.id(); }
+  int width() const { return desc_.width; }
+  int height() const { return desc_.height; }
+  int layers() const { return layers_; }
+  PixelFormat format() const { return desc_.format; }
+  explicit operator bool() const { return static_cast<bool>(handle_); }
+
+ private:
+  Handle<deleteTexture> handle_;
+  TextureDesc desc_;
+  int layers_ = 0;
 };
 
 class TextureCube {

@@ -17,9 +17,10 @@ inline constexpr int kMaxPunctualLights = penumbra::kMaxPunctualLights;
 // Point lights with a cube shadow map (the first ones of the scene; the rest stay unshadowed).
 inline constexpr int kMaxPointShadows = 2;
 
-// Texture units: 0..4 material, then these (shadow maps from kUnitShadow on).
+// Texture units: 0..4 material, then these. The shadow maps share one unit (a depth texture
+// array), which leaves units 13..15 free of WebGL2's guaranteed 16.
 inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
-                     kUnitShadow = 9, kUnitPointShadow = kUnitShadow + kMaxShadowMaps;
+                     kUnitShadow = 9, kUnitPointShadow = kUnitShadow + 1;
 static_assert(kUnitPointShadow + kMaxPointShadows <= 16, "WebGL2 guarantees 16 texture units");
 
 inline gl::Defines limitDefines() {

@@ -76,17 +76,18 @@ Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
   if (!programs) return programs.error();
   pass.programs_ = *programs;
   pass.size_ = mapSize;
+  auto maps = gl::Texture2DArray::create({.width = mapSize,
+                                          .height = mapSize,
+                                          .format = gl::PixelFormat::Depth24,
+                                          .sampler = {.minFilter = gl::Filter::Linear,
+                                                      .magFilter = gl::Filter::Linear,
+                                                      .depthCompare = true}},
+                                         kMaxShadowMaps);
+  if (!maps) return makeError("shadow maps: " + maps.message());
+  pass.maps_ = std::move(*maps);
   for (int i = 0; i < kMaxShadowMaps; ++i) {
-    auto tex = gl::Texture2D::create({.width = mapSize,
-                                      .height = mapSize,
-                                      .format = gl::PixelFormat::Depth24,
-                                      .sampler = {.minFilter = gl::Filter::Linear,
-                                                  .magFilter = gl::Filter::Linear,
-                                                  .depthCompare = true}});
-    if (!tex) return makeError("shadow map: " + tex.message());
-    pass.maps_[static_cast<size_t>(i)] = std::move(*tex);
     gl::Framebuffer fb = gl::Framebuffer::create();
-    fb.attachDepth(pass.maps_[static_cast<size_t>(i)]);
+    fb.attachDepth(pass.maps_, i);
     fb.setDrawBuffers(0);
     PN_TRY(fb.checkComplete());
     pass.framebuffers_[static_cast<size_t>(i)] = std::move(fb);
@@ -156,11 +157,9 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
   }
 }
 
-void ShadowPass::bind(const gl::Program& program, int firstUnit) const {
-  for (int i = 0; i < kMaxShadowMaps; ++i) {
-    maps_[static_cast<size_t>(i)].bind(firstUnit + i);
-    program.set("uShadowMap" + std::to_string(i), firstUnit + i);
-  }
+void ShadowPass::bind(const gl::Program& program, int unit) const {
+  maps_.bind(unit);
+  program.set("uShadowMaps", unit);
 }
 
 }  // namespace penumbra::passes

@@ -53,14 +53,15 @@ class ShadowPass {
   ShadowView render(int slot, const GpuScene& scene, const ShadowView& view, int coverageFrame,
                     int coverageStream);
   int size() const { return size_; }
-  // Binds the maps to units firstUnit.. and sets uShadowMap0..3 on a program in use.
-  void bind(const gl::Program& program, int firstUnit) const;
+  // Binds the maps (one texture array, a layer per slot) to `unit` and sets uShadowMaps on a
+  // program in use.
+  void bind(const gl::Program& program, int unit) const;
   int mapSize() const { return size_; }
 
  private:
   ShadowCasterPrograms programs_;
   int size_ = 0;
-  std::array<gl::Texture2D, kMaxShadowMaps> maps_;
+  gl::Texture2DArray maps_;
   std::array<gl::Framebuffer, kMaxShadowMaps> framebuffers_;
 };
 
