@@ -6,10 +6,10 @@
 // a rejected promise with a one-line message, and the previous scene keeps rendering.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdirSync, readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join, relative } from 'node:path';
-import { blocks, closeServer, diff, dist, fmt, launch, nativeRender, outDir, pixels, recordConsole,
-         root, serve, withTimeout } from './harness.mjs';
+import { blocks, closeServer, diff, dist, fmt, launch, nativeError, nativeRender, outDir, pixels,
+         recordConsole, root, serve, withTimeout } from './harness.mjs';
 
 const WIDTH = 240, HEIGHT = 160;  // the product camera's 3:2
 const FRAMES = 17;
@@ -158,6 +158,18 @@ test('a malformed compressed buffer is a one-line error on the page and in the p
     assert.match(results.draco, /^PenumbraError: bad_draco\.glb: .*KHR_draco_mesh_compression.*Draco decoding failed/);
     for (const r of Object.values(results)) assert.doesNotMatch(r, /\n/);
     console.log(`# page: ${shown[0]}\n# promise: ${results.meshopt}\n# promise: ${results.draco}`);
+    // Native penumbra-render says the same about the same bytes, but for the decoder's own
+    // words in the last brackets (libdraco and meshoptimizer there, the npm builds here).
+    const words = / \([^()]*\)$/;
+    for (const [kind, message] of [['draco', results.draco], ['meshopt', results.meshopt]]) {
+      const file = join(outDir, `bad_${kind}.glb`);
+      writeFileSync(file, new Uint8Array(bad[kind]));
+      const native = nativeError(file, consoleLines);
+      if (native === null) continue;
+      console.log(`# native: ${native}`);
+      assert.equal(message.replace(/^PenumbraError: /, '').replace(words, ''),
+                   native.replace(`${file}: `, `bad_${kind}.glb: `).replace(words, ''));
+    }
     // The glass scene is still there and renders.
     const state = await pg.evaluate(() => window.penumbraPage.viewer.state);
     assert.ok(state.total > 0 && state.frame > 0, `still rendering: ${JSON.stringify(state)}`);
