@@ -172,7 +172,11 @@ export declare class Viewer {
   readonly settings: EffectiveSettings;
   /** Every key setSettings() takes, from the renderer's settings schema plus budgetMs and resolutionScale. */
   readonly settingsSchema: SettingSchemaEntry[];
-  /** A scene file (.json), .gltf or .glb. `resources` supplies a .gltf's external files by name. */
+  /**
+   * A scene file (.json), .gltf or .glb. `resources` supplies a .gltf's external files by name.
+   * Draco- or meshopt-compressed meshes first fetch their decoder from `decoders/` next to this
+   * module (once per page; rejects with a PenumbraError if it cannot be fetched).
+   */
   loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
   /** Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), or [r, g, b]. */
   setEnvironment(source: Source | Vec3, options?: { name?: string }): Promise<void>;

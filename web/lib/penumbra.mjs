@@ -17,6 +17,7 @@
 // (failures there go to the 'error' event). docs/web.md documents the API.
 import createPenumbraViewerModule from './penumbra_viewer.js';
 import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
+import { provideDecoders } from './decoders.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
 
@@ -172,6 +173,7 @@ export class Viewer {
       main = { bytes: await toBytes(source), name: name || sourceName(source, 'scene') };
     }
     const staged = await gatherScene(main, resources || {});
+    await provideDecoders(this.#mod, staged.files);  // Draco/meshopt, only when the file needs them
     this.#check();
     const root = `/stage/${++stagingIds}`;
     let info;

@@ -189,3 +189,18 @@ export function nativeRender(scene, width, height, frames, outName, golden, log)
   }
   return golden ? { path: golden, source: `golden ${golden}` } : null;
 }
+
+// The one-line error of native penumbra-render loading `file` (an absolute path), without the
+// program's prefix; null when penumbra-render is not built or is older than the sources.
+export function nativeError(file, log) {
+  const newest = newestSource([join(root, 'renderer'), join(root, 'glsl')]);
+  if (!existsSync(NATIVE_BIN) || statSync(NATIVE_BIN).mtimeMs < newest) {
+    log.push(`[native] no current ${NATIVE_BIN}: native error not compared`);
+    return null;
+  }
+  const r = spawnSync(NATIVE_BIN, [file, '-o', join(outDir, 'native-error.png'), '--size', '16x16',
+                                   '--frames', '1', '-q'],
+                      { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
+                        timeout: 60_000, encoding: 'utf8' });
+  return r.status === 0 ? '' : r.stderr.trim().replace(/^penumbra-render: error: /, '');
+}

@@ -311,8 +311,8 @@ Result<ViewBytes> viewBytes(Document& doc, int viewIndex, LoadContext& ctx) {
   const auto& buffer = doc.bufferData[static_cast<size_t>(view.buffer)];
   if (view.meshopt && buffer.empty()) {
     return ctx.error(what +
-                     " is EXT_meshopt_compression-compressed, which is not supported in "
-                     "the web build, and its fallback buffer has no data");
+                     " is EXT_meshopt_compression-compressed, the meshopt decoder is not "
+                     "loaded, and its fallback buffer has no data");
   }
   if (view.meshopt &&
       (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)) {

@@ -126,8 +126,8 @@ struct NodeDesc {
   std::vector<int> children;
   int mesh = -1;
   int camera = -1;
-  int areaLight = -1;      // EXT_lights_area
-  int punctualLight = -1;  // KHR_lights_punctual
+  int areaLight = -1;       // EXT_lights_area
+  int punctualLight = -1;   // KHR_lights_punctual
   bool lightProxy = false;  // extras.area_light_proxy: the visible face of an area light
   glm::mat4 local{1.0f};
 };
@@ -274,7 +274,9 @@ struct DecodedDraco {
 };
 Result<DecodedDraco> decodeDraco(Document& doc, const PrimitiveDesc& primitive, LoadContext& ctx,
                                  const std::string& what);
-// Whether this build can decode the compression extensions (false in the web build).
+// Whether the compression extensions can be decoded: natively always; in the web build once
+// web/lib/decoders.mjs has given the module the decoder (it does for every file that names
+// the extension).
 bool hasDraco();
 bool hasMeshopt();
 

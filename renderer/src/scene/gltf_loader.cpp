@@ -34,7 +34,7 @@ Status checkExtensions(const Document& doc, LoadContext& ctx) {
     if (!isSupported(ext)) return ctx.error("requires unsupported extension " + ext);
     if ((ext == "KHR_draco_mesh_compression" && !gltf::hasDraco()) ||
         (ext == "EXT_meshopt_compression" && !gltf::hasMeshopt())) {
-      return ctx.error("requires " + ext + ", which is not supported in the web build");
+      return ctx.error("requires " + ext + ", and its decoder is not loaded");
     }
   }
   for (const std::string& ext : doc.extensionsUsed) {

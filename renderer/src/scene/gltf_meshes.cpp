@@ -81,8 +81,9 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
     auto pos = pd.attributes.find("POSITION");
     const bool hasFallback = pos != pd.attributes.end() &&
                              doc.accessors[static_cast<size_t>(pos->second)].bufferView >= 0;
-    // Natively Draco is always decoded; the web build falls back to uncompressed data when the
-    // file has it (the extension was optional), and otherwise decodeDraco reports the error.
+    // Decoded whenever a decoder is there (natively always; in the browser once
+    // web/lib/decoders.mjs has loaded it). Without one, uncompressed fallback data is read when
+    // the file has it (the extension was optional), and otherwise decodeDraco reports the error.
     if (hasDraco() || !hasFallback) {
       auto decoded = decodeDraco(doc, pd, ctx, what);
       if (!decoded.ok()) return decoded.error();

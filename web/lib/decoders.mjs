@@ -1,0 +1,103 @@
+// Decoders for compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression),
+// loaded only when a scene's glTF names one of the extensions, so the core module stays small.
+// They are the decoders their authors publish on npm, copied by tools/build-web from
+// web/node_modules (pinned by web/package-lock.json) into lib/decoders/ next to this file:
+//   meshopt_decoder.mjs                                   meshoptimizer (an ES module)
+//   draco_decoder_gltf_nodejs.js + draco_decoder_gltf.wasm  Google's Draco glTF decoder
+//                                  (draco3dgltf; an Emscripten UMD script that also runs in a page)
+// The wasm loader calls them synchronously from C++ (renderer/src/scene/mesh_decode_web.cpp)
+// through Module.penumbraDecoders, where the native build calls libdraco and meshoptimizer: the
+// checks, conversions and error messages around the decoding are the same C++ in both builds.
+import { PenumbraError } from './staging.mjs';
+
+export const DRACO = 'KHR_draco_mesh_compression';
+export const MESHOPT = 'EXT_meshopt_compression';
+const BASE = new URL('./decoders/', import.meta.url);
+const text = new TextDecoder();
+
+let meshopt = null;  // promise of the MeshoptDecoder, once asked for
+let draco = null;    // promise of the Draco decoder module, once asked for
+
+// The glTF JSON of a staged file: a .glb's first (JSON) chunk, or a .gltf's text; '' otherwise.
+function gltfJsonText(bytes) {
+  if (bytes.length >= 20 && bytes[0] === 0x67 && bytes[1] === 0x6c && bytes[2] === 0x54 &&
+      bytes[3] === 0x46) {
+    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    const length = view.getUint32(12, true);
+    return view.getUint32(16, true) === 0x4e4f534a && 20 + length <= bytes.length
+      ? text.decode(bytes.subarray(20, 20 + length)) : '';
+  }
+  let i = 0;
+  while (i < bytes.length && i < 64 && bytes[i] <= 0x20) i++;
+  return bytes[i] === 0x7b ? text.decode(bytes) : '';  // '{': a .gltf or a scene file
+}
+
+// Which decoders the staged files need: those whose extension a glTF's JSON names (in
+// extensionsUsed/Required or on a primitive or buffer view).
+export function neededDecoders(files) {
+  const need = { draco: false, meshopt: false };
+  for (const f of files) {
+    if (!/\.(glb|gltf)$/i.test(f.path)) continue;
+    const json = gltfJsonText(f.bytes);
+    need.draco ||= json.includes(DRACO);
+    need.meshopt ||= json.includes(MESHOPT);
+  }
+  return need;
+}
+
+const why = (e) => String(e && e.message ? e.message : e).split('\n')[0];
+
+function loadMeshopt() {
+  const url = new URL('meshopt_decoder.mjs', BASE).href;
+  meshopt ||= import(url).then(async ({ MeshoptDecoder }) => {
+    await MeshoptDecoder.ready;
+    return MeshoptDecoder;
+  }).catch((e) => {
+    meshopt = null;  // a later load may try again
+    throw new PenumbraError(`cannot load the meshopt decoder (${url}): ${why(e)}`);
+  });
+  return meshopt;
+}
+
+function loadDraco() {
+  const url = new URL('draco_decoder_gltf_nodejs.js', BASE).href;
+  draco ||= new Promise((resolve, reject) => {
+    if (typeof globalThis.DracoDecoderModule === 'function') {
+      resolve();
+      return;
+    }
+    const script = document.createElement('script');
+    script.src = url;
+    script.onload = () => resolve();
+    script.onerror = () => reject(new Error('the script did not load'));
+    document.head.appendChild(script);
+  }).then(() => {
+    if (typeof globalThis.DracoDecoderModule !== 'function') {
+      throw new Error('the script defines no DracoDecoderModule');
+    }
+    return new Promise((resolve, reject) => {
+      globalThis.DracoDecoderModule({
+        locateFile: (f) => new URL(f, BASE).href,
+        onAbort: (what) => reject(new Error(`aborted: ${what}`)),
+        print: () => {},
+        printErr: (t) => console.warn(`[penumbra] draco: ${t}`),
+      }).then(resolve, reject);
+    });
+  }).catch((e) => {
+    draco = null;
+    throw new PenumbraError(`cannot load the Draco decoder (${url}): ${why(e)}`);
+  });
+  return draco;
+}
+
+// Loads the decoders the staged files need (each at most once per page) and hands them to the
+// wasm module, before its synchronous load runs. Rejects with a one-line PenumbraError.
+export async function provideDecoders(mod, files) {
+  const need = neededDecoders(files);
+  if (!need.draco && !need.meshopt) return;
+  const [m, d] = await Promise.all([need.meshopt ? loadMeshopt() : null,
+                                    need.draco ? loadDraco() : null]);
+  mod.penumbraDecoders = { ...mod.penumbraDecoders };
+  if (m) mod.penumbraDecoders.meshopt = m;
+  if (d) mod.penumbraDecoders.draco = d;
+}
