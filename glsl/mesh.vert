@@ -17,6 +17,9 @@ out vec4 vTangent;
 out vec2 vUv0;
 out vec2 vUv1;
 out vec4 vColor;
+// The lighting pass may draw over a depth-only pass of the same geometry with LEQUAL: the
+// positions must come out bit-identical in both programs.
+invariant gl_Position;
 
 void main() {
   vec4 world = uModel * vec4(aPosition, 1.0);

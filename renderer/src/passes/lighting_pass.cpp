@@ -21,6 +21,9 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
     if (!p) return p.error();
     pass.variants_[v] = *p;
   }
+  auto depth = library.program("mesh.vert", "prepass.frag");
+  if (!depth) return depth.error();
+  pass.depthOnly_ = *depth;
   auto bg = FullscreenPass::create(library, "background.frag", /*farPlane=*/true);
   if (!bg) return bg.error();
   pass.background_.emplace(std::move(*bg));
@@ -165,14 +168,27 @@ Status LightingPass::draw(const LightingBatch& b) {
     if (b.first) drawBackground(b, envRotation);
     return {};
   }
+  // Depth first: a depth-only pass of the same geometry (same vertex shader, invariant
+  // positions, the same MASK and coverage decisions), then the lighting draws with LEQUAL, so
+  // each pixel is shaded once however much geometry overlaps it. Overdraw cost llvmpipe a
+  // third of the kitchen's lighting pass and a sixth of the Cornell box's.
+  if (b.first) {
+    const gl::Program& dp = *depthOnly_;
+    dp.use();
+    dp.set("uViewProj", b.camera->projection * b.camera->view);
+    dp.set("uView", b.camera->view);
+    dp.set("uCoverageFrame", b.coverageFrame);
+    dp.set("uCoverageStream", 0);
+    drawItems(dp, *b.scene, b.scene->opaque(), true, {.colorWrite = false});
+    if (b.coverageFrame >= 0)
+      drawItems(dp, *b.scene, b.scene->blended(), true, {.colorWrite = false});
+  }
   const gl::Program& p = *variant(b.occlusion, !b.area.empty(), !b.punctual.empty());
   setUniforms(p, b, envRotation);
   gl::PipelineState opaque;
-  if (!b.first) {
-    opaque.depthTest = gl::DepthTest::LessEqual;
-    opaque.depthWrite = false;
-    opaque.blend = gl::Blend::Additive;
-  }
+  opaque.depthTest = gl::DepthTest::LessEqual;
+  opaque.depthWrite = false;
+  if (!b.first) opaque.blend = gl::Blend::Additive;
   drawItems(p, *b.scene, b.scene->opaque(), true, opaque);
   // Stochastic coverage: BLEND surfaces are drawn like opaque ones, minus the fragments this
   // frame does not keep, in every batch (the same decisions each time).

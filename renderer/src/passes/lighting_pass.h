@@ -74,6 +74,7 @@ class LightingPass {
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
 
   gl::Program* variants_[8] = {};
+  gl::Program* depthOnly_ = nullptr;
   std::optional<FullscreenPass> background_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
 };
