@@ -284,3 +284,44 @@ TEST_F(RendererGLTest, NonFiniteSamplesDoNotPoisonTheImage) {
 
 }  // namespace
 }  // namespace penumbra::test
+
+namespace penumbra::test {
+namespace {
+
+// Three stacked squares seen from above: each pixel must show the nearest one (the lighting
+// pass shades after a depth-only pass of the same geometry, with LEQUAL: a position that came
+// out differently in the two programs would leave holes or show a lower square), and the draw
+// order must not change a single value.
+TEST_F(RendererGLTest, OverlappingSurfacesShowTheNearestWhateverTheDrawOrder) {
+  auto render = [](bool reversed) {
+    Scene s;
+    const float albedo[3] = {0.8f, 0.5f, 0.2f};
+    for (int i = 0; i < 3; ++i) {
+      const int k = reversed ? 2 - i : i;
+      s.materials.push_back(lambert(glm::vec3(albedo[k])));
+      s.meshes.push_back(quadMesh(4.0f - static_cast<float>(k), 0.1f * static_cast<float>(k), i));
+    }
+    finishScene(s);
+    RenderSettings rs;
+    rs.width = rs.height = 40;
+    rs.progressive.frames = 4;
+    return renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)),
+                          lookAtCamera({0, 6, 0.01f}, {0, 0, 0}, 30.0f), rs);
+  };
+  auto a = render(false);
+  auto b = render(true);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->pixels, b->pixels);
+  // The top square (side 2, albedo 0.2, open sky above) covers the central pixels: under a
+  // uniform sky of 1 they all show the same radiance, its albedo plus its (F0 0.04) specular
+  // reflection, well below the squares under it (0.5 and 0.8).
+  const float centre = a->pixel(20, 20)[1];
+  EXPECT_GT(centre, 0.2f);
+  EXPECT_LT(centre, 0.25f);
+  for (int y = 14; y < 26; ++y) {
+    for (int x = 14; x < 26; ++x) EXPECT_NEAR(a->pixel(x, y)[1], centre, 1e-4f) << x << "," << y;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::test
