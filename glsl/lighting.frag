@@ -88,6 +88,9 @@ void main() {
   float sheenScale = 1.0 - sheenMax * sheenE;
 
   vec3 color = vec3(0.0);
+  // 1 while the diffuse environment term is the unoccluded E(n): a sky-shadow sample corrects
+  // it then; 0 once this frame's diffuse occlusion ray replaced it with what the ray hit.
+  float skyLossWeight = 1.0;
 
   // Environment.
   if (uEnvWeight > 0.0) {
@@ -104,6 +107,7 @@ void main() {
       vec3 dDir = frame * sampleCosineHemisphere(pixelSample(pixel, 0.0));
       if (traceOcclusion(vWorldPos, dDir, fract(uSequence.x * 7.0 + hash2(pixel, 5u).x), hit)) {
         irradiance = hit * PI;
+        skyLossWeight = 0.0;
       }
       // Specular: one GGX half vector, reflected.
       vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
@@ -178,6 +182,18 @@ void main() {
     int type = int(uPunctualPos[i].w);
     if (type == 2) {
       l = -uPunctualDir[i].xyz;
+      if (uPunctualCone[i].x < 0.0) {
+        // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
+        // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
+        // and colour (n.l) (V - 1) of what the shadow takes from the diffuse term.
+        float NoLs = dot(n, l);
+        if (NoLs <= 0.0 || skyLossWeight <= 0.0) continue;
+        float vis = shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
+        color += uPunctualColor[i] * ((vis - 1.0) * NoLs * INV_PI * skyLossWeight * s.occlusion *
+                                      baseScale * sheenScale) *
+                 diffuseColor;
+        continue;
+      }
     } else {
       vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
       float d2 = max(dot(toLight, toLight), 1e-8);

@@ -171,6 +171,15 @@ TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
 TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   Loaded l = loadCornell(32, 32);
   l.env = uniformEnvironment(glm::vec3(0.2f));  // a lit environment: the f_d delay applies
+  {
+    // Sky shadows: one shadow map a frame from frame 2 (occlusion on), none in frame 1.
+    auto sky = makeRenderer(l);
+    ASSERT_EQ(*sky->step(), 1);
+    EXPECT_EQ(sky->lastFrame().shadowPasses, 0);
+    ASSERT_EQ(*sky->step(), 2);
+    EXPECT_EQ(sky->lastFrame().shadowPasses, 1);
+  }
+  l.settings.progressive.skyShadows = false;  // the rest counts area-light samples
   auto r = makeRenderer(l);
   ASSERT_EQ(*r->step(), 1);
   EXPECT_EQ(r->lastFrame().shadowPasses, 0);
@@ -203,6 +212,7 @@ TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
 
 TEST_F(RendererGLTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
   Loaded l = loadCornell(24, 32);  // black environment
+  l.settings.progressive.skyShadows = false;  // counted above; here: area-light samples only
   auto r = makeRenderer(l);
   ASSERT_EQ(*r->step(), 1);
   EXPECT_EQ(r->lastFrame().shadowPasses, 0) << "frame 1 stays environment only";

@@ -22,6 +22,9 @@ export interface Settings {
   toneMapper?: ToneMapper;
   /** One-bounce screen-space indirect light. */
   screenSpaceIndirect?: boolean;
+  /** Sky shadows: one environment direction a frame (by luminance, above the horizon) casts a
+   * shadow-mapped shadow on the diffuse environment light (default true). */
+  skyShadows?: boolean;
   /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */
   indirectClamp?: number;
   /** Shadow-map samples per area light; 0 = automatic. */

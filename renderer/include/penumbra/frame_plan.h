@@ -23,6 +23,7 @@ struct FramePlan {
   bool occlusion = false;      // evaluate progressive occlusion (needs the prepass)
   bool renderPrepass = false;  // (re)render the depth and normal prepass before this frame
   glm::vec2 sequence{0.0f};    // this frame's low-discrepancy point for occlusion sampling
+  glm::vec2 skyPoint{0.0f};    // this frame's point for choosing its sky-shadow direction
   std::vector<LightSample> lights;
 };
 

@@ -158,6 +158,40 @@ inline constexpr double kSunAutoMeanMultiple = 20.0;
 inline constexpr float kSunMaxAngularRadius = 0.1047f;  // 6 degrees
 inline constexpr double kSunMinShare = 0.05;
 
+// The environment without its sun as a distribution of directions for sky shadows: each
+// frame the renderer draws one direction with probability proportional to its luminance,
+// renders a directional shadow map for it and subtracts the light that direction's shadow
+// takes from the diffuse environment term (an unbiased estimate of the sky's shadow). Built
+// from mip 0 of the cube map, box-filtered to `resolution` texels per face edge. With
+// `upperOnly`, only texels whose centre is above the horizon (+Y) take part: each sample
+// subtracts up to the whole distribution's luminance times n.l, which for a surface facing
+// the dark ground below would be many times the light it receives (dark speckles that take
+// hundreds of frames to average out); the sky above is what casts the shadows one sees.
+struct SkySample {
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit, towards the sky (environment frame)
+  glm::vec3 radiance{0.0f};               // RGB of the texel it was drawn from
+  float pdf = 0.0f;                       // per unit solid angle
+};
+class SkyDistribution {
+ public:
+  SkyDistribution() = default;
+  static SkyDistribution build(const Cubemap& cube, int resolution = 16, bool upperOnly = false);
+  bool empty() const { return total_ <= 0.0; }
+  // Maps u in [0, 1)^2 to a direction: a texel by its share of the luminance, then a uniform
+  // point on it (the texel's residual of u.x and u.y).
+  SkySample sample(glm::vec2 u) const;
+  // pdf of a direction (per unit solid angle), for tests.
+  float pdf(const glm::vec3& direction) const;
+  int resolution() const { return resolution_; }
+
+ private:
+  int resolution_ = 0;
+  std::vector<glm::vec3> radiance_;  // per texel, face-major then row-major
+  std::vector<double> cdf_;          // running sum of luminance x solid angle
+  std::vector<float> solidAngle_;
+  double total_ = 0.0;
+};
+
 struct SunOptions {
   // Luminance above which the region around the brightest pixel becomes the sun. Negative:
   // automatic (the rules above); 0: no extraction; positive: this threshold, no size or share

@@ -20,14 +20,18 @@ const char* toneMapperName(ToneMapper t);
 Result<ToneMapper> parseToneMapper(std::string_view name);
 
 struct ProgressiveSettings {
-  int frames = 128;                // m, the target number of intermediate frames (1..4096)
-  float directDelay = 0.3f;        // f_d: direct-light samples start at frame floor(m * f_d)
+  int frames = 128;          // m, the target number of intermediate frames (1..4096)
+  float directDelay = 0.3f;  // f_d: direct-light samples start at frame floor(m * f_d)
   // d_occ in scene units; 0 = automatic: kAutoOcclusionFraction of the scene's bounding-box
   // diagonal, so a model in millimetres and a room in metres both work without a setting.
   float occlusionDistance = 0.0f;
-  int lightSamples = 0;            // shadow-map samples per area light; 0 = automatic
+  int lightSamples = 0;  // shadow-map samples per area light; 0 = automatic
   int shadowMapSize = 1024;
   bool screenSpaceIndirect = true;  // one-bounce screen-space indirect light
+  // Sky shadows: from frame 2, one direction per frame drawn from the environment's (sunless)
+  // luminance gets a directional shadow map, and the light its shadow takes is subtracted from
+  // the diffuse environment term, so objects shade what is under them at any distance.
+  bool skyShadows = true;
   // Largest radiance one screen-space indirect sample may bring back (0 = no limit): a ray
   // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
   // default indirect clamp of Cycles, the reference the evaluation compares against.

@@ -73,8 +73,8 @@ const SettingInfo kSchema[] = {
     {"environmentRotation", "environment", "rotation", "--env-rotation", SettingType::Float, -360,
      360, false, false, false, true, "environment rotation about +Y in degrees",
      PN_FIELD(environmentRotation, float)},
-    {"sunThreshold", "environment", "sunThreshold", "--sun-threshold", SettingType::Float, -1,
-     1e9, false, false, false, true,
+    {"sunThreshold", "environment", "sunThreshold", "--sun-threshold", SettingType::Float, -1, 1e9,
+     false, false, false, true,
      "a panorama's sun: luminance above which its brightest compact region becomes a "
      "shadow-casting light (-1 automatic, 0 off)",
      PN_FIELD(sunThreshold, float)},
@@ -102,6 +102,11 @@ const SettingInfo kSchema[] = {
     {"screenSpaceIndirect", "progressive", "screenSpaceIndirect", "--no-ssgi", SettingType::Bool, 0,
      1, false, false, false, true, "one-bounce screen-space indirect light",
      PN_BOOL(progressive.screenSpaceIndirect)},
+    {"skyShadows", "progressive", "skyShadows", "--no-sky-shadows", SettingType::Bool, 0, 1, false,
+     false, false, true,
+     "sky shadows: one environment direction a frame, by luminance, casts a shadow-mapped "
+     "shadow on the diffuse environment light",
+     PN_BOOL(progressive.skyShadows)},
     {"indirectClamp", "progressive", "indirectClamp", "--indirect-clamp", SettingType::Float, 0,
      1e9, false, false, false, true,
      "largest radiance one screen-space indirect sample brings back (0 = no limit)",

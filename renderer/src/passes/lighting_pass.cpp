@@ -117,8 +117,9 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     const float diameter = l.angularDiameter > 0.0f
                                ? l.angularDiameter
                                : glm::radians(b.settings->progressive.directionalAngle);
-    disk.emplace_back(l.direction,
-                      l.type == LightType::Directional ? std::tan(0.5f * diameter) : 0.0f);
+    disk.emplace_back(l.direction, l.type == LightType::Directional && !pd.skyLoss
+                                       ? std::tan(0.5f * diameter)
+                                       : 0.0f);
     if (pd.pointShadow >= 0) {
       punctualShadow.push_back(-2 - pd.pointShadow);  // chunks/shadows.glsl's encoding
       pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;
@@ -129,7 +130,8 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     pcol.push_back(l.color * l.intensity * pd.weight);
     const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
     const float scale = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
-    cone.emplace_back(scale, -cosOuter * scale);
+    // A negative cone scale marks a sky-shadow sample (directional lights have no cone).
+    cone.push_back(pd.skyLoss ? glm::vec2(-1.0f, 0.0f) : glm::vec2(scale, -cosOuter * scale));
   }
   p.set("uPunctualCount", static_cast<int>(ppos.size()));
   p.set("uPunctualPos", std::span<const glm::vec4>(ppos));

@@ -42,6 +42,10 @@ struct PunctualDraw {
   ShadowView view;
   int pointShadow = -1;  // point lights: its cube map in the PointShadowPass, or -1
   PointShadowView pointView;
+  // A sky-shadow sample (render::skyLight): shades (visibility - 1) x its light on the diffuse
+  // term only, where this frame's diffuse occlusion ray did not already replace the
+  // environment's light.
+  bool skyLoss = false;
 };
 
 struct LightingBatch {

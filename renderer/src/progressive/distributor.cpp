@@ -34,6 +34,11 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
     f.renderPrepass = f.frame == 2;
     glm::vec2 seq = r2(static_cast<uint32_t>(k)) + seedOffset(s.seed, 3);
     f.sequence = seq - glm::floor(seq);
+    // Halton (5, 7): independent of the jitter's (2, 3) and of the occlusion's R2 points.
+    const glm::vec2 sky = glm::vec2(radicalInverse(static_cast<uint32_t>(k), 5),
+                                    radicalInverse(static_cast<uint32_t>(k), 7)) +
+                          seedOffset(s.seed, 5);
+    f.skyPoint = sky - glm::floor(sky);
   }
   if (lights.empty()) return plan;
 

@@ -21,6 +21,18 @@ Light sunLight(const ibl::Sun& sun, const RenderSettings& settings) {
   return l;
 }
 
+Light skyLight(const ibl::SkySample& sample, const RenderSettings& settings) {
+  const glm::mat3 turn(
+      glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation), glm::vec3(0, 1, 0)));
+  Light l;
+  l.name = "sky shadow sample";
+  l.type = LightType::Directional;
+  l.direction = -glm::normalize(turn * sample.direction);
+  l.color = sample.pdf > 0.0f ? sample.radiance / sample.pdf : glm::vec3(0.0f);
+  l.intensity = settings.environmentIntensity;
+  return l;
+}
+
 glm::vec3 punctualDirection(const Light& l, glm::vec2 u, const RenderSettings& settings) {
   if (l.type != LightType::Directional) return l.direction;
   const float diameter = l.angularDiameter > 0.0f

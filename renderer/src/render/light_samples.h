@@ -17,6 +17,11 @@ namespace penumbra::render {
 // The environment's sun as a directional light, turned and scaled like the environment.
 Light sunLight(const ibl::Sun& sun, const RenderSettings& settings);
 
+// A sky-shadow sample as a directional light: travelling away from the sampled direction
+// (turned like the environment), colour = radiance / pdf times the environment intensity: the
+// irradiance estimate whose shadowed part the lighting pass subtracts.
+Light skyLight(const ibl::SkySample& sample, const RenderSettings& settings);
+
 // The direction of travel of a punctual light sample: a directional light's is spread over
 // its angular size (the sample point u on a disk), the others' is the light's own.
 glm::vec3 punctualDirection(const Light& light, glm::vec2 u, const RenderSettings& settings);

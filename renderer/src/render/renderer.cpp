@@ -73,6 +73,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::vector<Light> lights;  // the scene's, then the environment's sun if it has one
   std::vector<Light> sceneLights;
   std::optional<ibl::Sun> sun;  // as stored with the environment (unrotated, unscaled)
+  ibl::SkyDistribution sky;     // the environment without its sun, for sky shadows
+  Light skySample;              // this frame's sky-shadow sample (punctual draws point to it)
   std::unique_ptr<GpuEnvironment> environment;
   Camera camera;
   bool hasCamera = false;
@@ -276,6 +278,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
         punctual.push_back({&l, s.weight, render::punctualDirection(l, s.point, settings)});
       }
     }
+    // Sky shadows: one direction of the sunless environment, by luminance, from the frames with
+    // occlusion on (the diffuse term it corrects is then a per-frame estimate anyway).
+    if (plan.occlusion && settings.progressive.skyShadows && scene && !sky.empty() &&
+        environmentMean * settings.environmentIntensity > 0.0f &&
+        punctual.size() < static_cast<size_t>(passes::kMaxPunctualLights)) {
+      skySample = render::skyLight(sky.sample(plan.skyPoint), settings);
+      passes::PunctualDraw pd{&skySample, 1.0f, skySample.direction};
+      pd.skyLoss = true;
+      punctual.push_back(pd);
+    }
     constexpr size_t kBatch = passes::kMaxShadowMaps;
     int shadowStream = 0;  // each shadow map of the frame decides coverage on its own
     // Spot and directional samples (first batch only) take shadow maps before area samples;
@@ -454,6 +466,9 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   const glm::vec3 mean = environment.sh.c[0] * 0.282095f;
   impl_->environmentMean = std::max(mean.r, std::max(mean.g, mean.b));
   impl_->sun = environment.sun;
+  impl_->sky = environment.specular.mipCount() > 0
+                   ? ibl::SkyDistribution::build(environment.specular, 16, /*upperOnly=*/true)
+                   : ibl::SkyDistribution();
   impl_->setLights();
   impl_->updateDarkness();
   impl_->controller.invalidate();
