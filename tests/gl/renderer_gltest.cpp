@@ -173,7 +173,9 @@ TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   l.env = uniformEnvironment(glm::vec3(0.2f));  // a lit environment: the f_d delay applies
   {
     // Sky shadows: one shadow map a frame from frame 2 (occlusion on), none in frame 1.
-    auto sky = makeRenderer(l);
+    Loaded withSky = l;
+    withSky.settings.progressive.skyShadows = true;
+    auto sky = makeRenderer(withSky);
     ASSERT_EQ(*sky->step(), 1);
     EXPECT_EQ(sky->lastFrame().shadowPasses, 0);
     ASSERT_EQ(*sky->step(), 2);

@@ -27,6 +27,8 @@ class SettingFlags {
       std::string help(info.help);
       if (info.type == SettingType::Bool && flag.rfind("--no-", 0) == 0) {
         slot->option = app.add_flag(flag, slot->switched, "turn off: " + help)->group(group);
+      } else if (info.type == SettingType::Bool) {
+        slot->option = app.add_flag(flag, slot->switched, "turn on: " + help)->group(group);
       } else {
         help += " (" + settingRange(info) + "; default " + settingText(defaults, info) + ")";
         slot->option = app.add_option(flag, slot->text, help)->group(group);
@@ -40,7 +42,9 @@ class SettingFlags {
     std::vector<std::pair<std::string, std::string>> out;
     for (const auto& s : slots_) {
       if (s->option->count() == 0) continue;
-      out.emplace_back(std::string(s->info->key), s->switched ? "false" : s->text);
+      const bool turnsOff = std::string_view(s->info->flag).rfind("--no-", 0) == 0;
+      out.emplace_back(std::string(s->info->key),
+                       s->switched ? (turnsOff ? "false" : "true") : s->text);
     }
     return out;
   }

@@ -23,7 +23,8 @@ export interface Settings {
   /** One-bounce screen-space indirect light. */
   screenSpaceIndirect?: boolean;
   /** Sky shadows: one environment direction a frame (by luminance, above the horizon) casts a
-   * shadow-mapped shadow on the diffuse environment light (default true). */
+   * shadow-mapped shadow on the diffuse environment light (default false: without multi-bounce
+   * indirect light it only darkens). */
   skyShadows?: boolean;
   /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */
   indirectClamp?: number;

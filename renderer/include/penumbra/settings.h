@@ -30,8 +30,10 @@ struct ProgressiveSettings {
   bool screenSpaceIndirect = true;  // one-bounce screen-space indirect light
   // Sky shadows: from frame 2, one direction per frame drawn from the environment's (sunless)
   // luminance gets a directional shadow map, and the light its shadow takes is subtracted from
-  // the diffuse environment term, so objects shade what is under them at any distance.
-  bool skyShadows = true;
+  // the diffuse environment term, so objects shade what is under them at any distance. Off by
+  // default: without multi-bounce indirect light the light the shadowing surfaces would
+  // reflect back is missing, and the evaluation's product scene moved away from Cycles.
+  bool skyShadows = false;
   // Largest radiance one screen-space indirect sample may bring back (0 = no limit): a ray
   // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
   // default indirect clamp of Cycles, the reference the evaluation compares against.

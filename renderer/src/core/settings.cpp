@@ -102,7 +102,7 @@ const SettingInfo kSchema[] = {
     {"screenSpaceIndirect", "progressive", "screenSpaceIndirect", "--no-ssgi", SettingType::Bool, 0,
      1, false, false, false, true, "one-bounce screen-space indirect light",
      PN_BOOL(progressive.screenSpaceIndirect)},
-    {"skyShadows", "progressive", "skyShadows", "--no-sky-shadows", SettingType::Bool, 0, 1, false,
+    {"skyShadows", "progressive", "skyShadows", "--sky-shadows", SettingType::Bool, 0, 1, false,
      false, false, true,
      "sky shadows: one environment direction a frame, by luminance, casts a shadow-mapped "
      "shadow on the diffuse environment light",
