@@ -13,5 +13,8 @@ void main() {
   vec4 prev = texture(uPrevious, vUv);
   vec4 cur = texture(uCurrent, vUv);
   if (!finite(cur)) cur = prev;
+  // Frame 1 becomes the mean as it is (RenderTargets::takeFrameAsMean): a non-finite pixel
+  // there is replaced by the first finite sample after it.
+  if (!finite(prev)) prev = cur;
   fragColor = uWeight >= 1.0 ? cur : prev + (cur - prev) * uWeight;
 }

@@ -36,7 +36,9 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
   if (!frame) return makeError("frame target: " + frame.message());
   t.frame = std::move(*frame);
   for (auto& a : t.accumulation) {
-    auto acc = makeColor(w, h, format, nullptr);
+    // With the frame's depth too: frame 1 is not accumulated but swapped in (takeFrameAsMean),
+    // and the former accumulation target then serves as the next frame's target.
+    auto acc = makeColor(w, h, format, &t.frameDepth);
     if (!acc) return makeError("accumulation target: " + acc.message());
     a = std::move(*acc);
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 
 #include "gl/objects.h"
 #include "gl/texture.h"
@@ -29,6 +30,13 @@ struct RenderTargets {
 
   static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
                                       gl::PixelFormat prepassFormat);
+  // After frame 1 the mean is frame 1 itself: the frame target becomes the mean by swapping
+  // it with the other accumulation target (no accumulation pass), which becomes the frame
+  // target. Every one of the three has the frame's depth attached, so any can be drawn into.
+  void takeFrameAsMean() {
+    std::swap(frame, accumulation[static_cast<size_t>(1 - current)]);
+    current = 1 - current;
+  }
 };
 
 }  // namespace penumbra::passes

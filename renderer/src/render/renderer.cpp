@@ -399,7 +399,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
           }
           if (t == k - 1) ++stats.lightingPasses;
           endPass(&stats.lightingMs);
-          if (last) {
+          if (last && pending.plan.frame == 1) {
+            if (t == k - 1) targets->takeFrameAsMean();  // mean_1 = x_1: no pass needed
+          } else if (last) {
             accumulate->draw(*targets, pending.plan.frame);
             if (t == k - 1) targets->current = 1 - targets->current;  // the new mean
             endPass(&stats.accumulateMs);
