@@ -16,8 +16,12 @@ const SIZE = 64;
 // Agreement at the swap, displayed images (scene exposure, PBR Neutral, sRGB). Measured at 64x64:
 // see docs/web.md. The path tracer at the swap still carries noise (the rule lets it take over
 // when its noise is half Penumbra's estimated bias), and Penumbra lacks part of the Cornell box's
-// multiple-bounce light (docs/evaluation: Cycles is about 20 % brighter), so the bounds are:
-const MAX_RELATIVE_LUMINANCE = 0.3;  // |L_pt - L_penumbra| / L_penumbra
+// multiple-bounce light (docs/evaluation: Cycles is about 20 % brighter in linear radiance), so
+// the path tracer must be brighter, by at most 25 %: (L_pt - L_penumbra) / L_penumbra in
+// [0, 0.25] (measured 0.13 and 0.13; with the path tracer's exposure left at 0 EV instead of the
+// scene's +1 it is -0.22 and -0.18 and fails). SSIM of the luminance at least 0.4 (measured 0.55
+// and 0.62: the path tracer's noise at 16 samples bounds it).
+const LUMINANCE_RANGE = [0, 0.25];
 const MIN_SSIM = 0.4;
 const FIRST_SWAP_MS = 150_000;       // load, converge, compile (45-60 s), samples
 const TEST_MS = 200_000;
@@ -48,7 +52,7 @@ const state = () => withTimeout(page.evaluate(() => {
   const { strip, stripNow, ...rest } = window.handoff || {};
   return { ...rest, opacity: getComputedStyle(document.getElementById('pathtracer')).opacity,
            penumbra: window.handoff ? null : null };
-}), 30_000, 'read state');
+}), 90_000, 'read state');  // the shader compile blocks the page for 45-60 s
 
 async function waitPhase(phase, ms, what) {
   try {
@@ -84,14 +88,14 @@ function checkSwap(s, label) {
     assert.ok(!(c.noise <= factor * c.bias || c.noise <= floor), `${label}: rule held earlier at ${c.samples} samples`);
   }
   assert.deepEqual(s.checks.at(-1).samples, swap.samples);
-  const rel = Math.abs(swap.relativeLuminanceDifference);
+  const rel = swap.relativeLuminanceDifference;
   figures[label] = { samples: swap.samples, tracingMs: Math.round(swap.tracingMs), noise: swap.noise,
                      bias: swap.bias, penumbraLuminance: swap.penumbraLuminance,
                      pathTracerLuminance: swap.pathTracerLuminance, relativeLuminance: swap.relativeLuminanceDifference,
                      ssim: swap.ssim, compileMs: s.compileMs && Math.round(s.compileMs) };
-  if (rel > MAX_RELATIVE_LUMINANCE || swap.ssim < MIN_SSIM) {
+  if (rel < LUMINANCE_RANGE[0] || rel > LUMINANCE_RANGE[1] || swap.ssim < MIN_SSIM) {
     throw new Error(`${label}: disagreement at the swap: mean luminance ${swap.pathTracerLuminance.toFixed(4)} vs ` +
-                    `${swap.penumbraLuminance.toFixed(4)} (relative ${rel.toFixed(3)}, bound ${MAX_RELATIVE_LUMINANCE}), ` +
+                    `${swap.penumbraLuminance.toFixed(4)} (relative ${rel.toFixed(3)}, bounds ${LUMINANCE_RANGE.join('..')}), ` +
                     `SSIM ${swap.ssim.toFixed(3)} (bound ${MIN_SSIM}); strip in handoff-strip.png`);
   }
 }
