@@ -26,7 +26,7 @@ export const TONE_MAPPERS = {
 const linear = (rgb) => new THREE.Color().setRGB(rgb[0], rgb[1], rgb[2], THREE.LinearSRGBColorSpace);
 
 // EXT_lights_area lights become ShapedAreaLights under their nodes; proxies move behind them.
-async function addAreaLights(gltf) {
+export async function addAreaLights(gltf) {
   const json = gltf.parser.json;
   const defs = json.extensions?.EXT_lights_area?.lights || [];
   const nodes = json.nodes || [];
