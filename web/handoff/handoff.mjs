@@ -7,7 +7,8 @@
 //
 // URL query: scene=URL (a scene .json; default the Cornell box), size=WxH (fixed CSS size of the
 // view, else the window), frames=N (Penumbra's m), budget=MS (path tracer per animation frame,
-// default 12), bounces=N (default 8), tiles=N (N x N tiles per sample, default 1),
+// default 12), bounces=N (default 8), tiles=N (N x N tiles per sample; default: chosen from
+// the measured sample time so a tile fits the budget),
 // maxSamples=N (the path tracer stops there, default 4096), and the rule's factor=F (default 0.5),
 // floor=X (default 1/255) and minSamples=N (default 2) (swap.mjs).
 // window.handoff holds the state for tests: {phase, samples, checks, swaps, ...}.
@@ -170,7 +171,7 @@ async function main() {
   }
   tracer = await PathTracerView.create(tcanvas, { gltfUrl: desc.gltfUrl, environment,
                                                   settings: viewer.settings,
-                                                  bounces: num('bounces', 8), tiles: num('tiles', 1) });
+                                                  bounces: num('bounces', 8), tiles: num('tiles', 0) });
   viewer.on('progress', () => { if (state.phase === 'penumbra') show('penumbra'); });
   viewer.on('converged', () => { startTracing().catch(fail); });
   viewer.on('camera', () => {

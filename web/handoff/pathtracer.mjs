@@ -73,11 +73,12 @@ function uniformTexture(rgb) {
 
 export class PathTracerView {
   renderer; pathTracer; scene; camera; compileMs = null; lights = 0;
-  #gl; #started = false; #sampleMs = 0;
+  autoTiles = true;
+  #gl; #started = false; #sampleMs = 0; #work = 0;
 
   // canvas: the path tracer's own canvas. gltfUrl: the glTF Penumbra renders. environment:
   // {uniform: [r, g, b]} or {file: URL} (a 2:1 panorama). settings: Penumbra's (viewer.settings).
-  static async create(canvas, { gltfUrl, environment, settings, bounces = 8, tiles = 1 }) {
+  static async create(canvas, { gltfUrl, environment, settings, bounces = 8, tiles = 0 }) {
     const v = new PathTracerView();
     const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false,
                                                preserveDrawingBuffer: true });
@@ -95,7 +96,8 @@ export class PathTracerView {
     const pt = new WebGLPathTracer(renderer);
     Object.assign(pt, { renderDelay: 0, minSamples: 0, fadeDuration: 0, rasterizeScene: false,
                         dynamicLowRes: false, renderScale: 1, filterGlossyFactor: 0, bounces });
-    pt.tiles.set(tiles, tiles);
+    v.autoTiles = !tiles;  // 0: chosen from the measured sample time (step)
+    pt.tiles.set(tiles || 1, tiles || 1);
     v.pathTracer = pt;
     return v;
   }
@@ -154,6 +156,7 @@ export class PathTracerView {
       this.pathTracer.setCamera(c);
     }
     this.#sampleMs = 0;
+    this.#work = 0;
   }
 
   get samples() { return this.pathTracer.samples; }
@@ -163,6 +166,8 @@ export class PathTracerView {
 
   // Renders tiles until the budget is spent (at least one); each is timed with a 1-pixel
   // read-back. Calls onSample(samples) after each whole sample. Returns the whole samples done.
+  // With autoTiles, a sample is split into k x k tiles, k = ceil(sqrt(sample ms / budget)) (at
+  // most 8), so that one tile fits the budget and a camera move is answered within a tile.
   step(budgetMs, onSample) {
     const start = performance.now();
     let prev = start, done = 0;
@@ -177,8 +182,14 @@ export class PathTracerView {
       // The first sample waits for the shader to compile (no parallel compile in SwiftShader).
       if (this.compileMs === null && after > 0) this.compileMs = dt;
       else if (after > before) this.#sampleMs += dt;
+      this.#work += dt;
       if (Number.isInteger(after) && after > before) {
         done++;
+        if (this.autoTiles && after > 1) {
+          const k = Math.min(8, Math.max(1, Math.ceil(Math.sqrt(this.#work / budgetMs))));
+          if (k !== this.pathTracer.tiles.x) this.pathTracer.tiles.set(k, k);
+        }
+        this.#work = 0;
         if (onSample && onSample(after) === false) break;
       }
       if ((t - start) + dt > budgetMs) break;
