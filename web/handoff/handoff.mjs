@@ -10,7 +10,7 @@
 // default 12), bounces=N (default 8), tiles=N (N x N tiles per sample; default: chosen from
 // the measured sample time so a tile fits the budget),
 // maxSamples=N (the path tracer stops there, default 4096), and the rule's factor=F (default 0.5),
-// floor=X (default 1/255) and minSamples=N (default 2) (swap.mjs).
+// floor=X (default 1/255) and minSamples=N (default 16) (swap.mjs).
 // window.handoff holds the state for tests: {phase, samples, checks, swaps, ...}.
 import Penumbra from '../lib/penumbra.mjs';
 import { PathTracerView } from './pathtracer.mjs';

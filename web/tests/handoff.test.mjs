@@ -17,11 +17,12 @@ const SIZE = 64;
 // see docs/web.md. The path tracer at the swap still carries noise (the rule lets it take over
 // when its noise is half Penumbra's estimated bias), and Penumbra lacks part of the Cornell box's
 // multiple-bounce light (docs/evaluation: Cycles is about 20 % brighter in linear radiance), so
-// the path tracer must be brighter, by at most 25 %: (L_pt - L_penumbra) / L_penumbra in
-// [0, 0.25] (measured 0.13 and 0.13; with the path tracer's exposure left at 0 EV instead of the
-// scene's +1 it is -0.22 and -0.18 and fails). SSIM of the luminance at least 0.4 (measured 0.55
-// and 0.62: the path tracer's noise at 16 samples bounds it).
-const LUMINANCE_RANGE = [0, 0.25];
+// the path tracer must be brighter, by at most 30 %: (L_pt - L_penumbra) / L_penumbra in
+// [0, 0.3] (measured 0.12-0.20 over six swaps in three runs; with the path tracer's exposure left
+// at 0 EV instead of the scene's +1 it is -0.22 and -0.18 and fails). SSIM of the luminance at
+// least 0.4 (measured 0.55-0.71: the path tracer's noise at 16-32 samples bounds it; a field of
+// view 15 % too wide gives 0.21).
+const LUMINANCE_RANGE = [0, 0.3];
 const MIN_SSIM = 0.4;
 const FIRST_SWAP_MS = 150_000;       // load, converge, compile (45-60 s), samples
 const TEST_MS = 200_000;
@@ -83,7 +84,7 @@ function checkSwap(s, label) {
   // The rule fired at this check and at no earlier one since the camera last changed.
   assert.ok(swap.noise <= factor * swap.bias || swap.noise <= floor, `${label}: ${JSON.stringify(swap)}`);
   assert.ok(swap.samples >= minSamples);
-  const before = s.checks.slice(0, -1);
+  const before = s.checks.slice(0, -1).filter((c) => c.samples >= minSamples);
   for (const c of before) {
     assert.ok(!(c.noise <= factor * c.bias || c.noise <= floor), `${label}: rule held earlier at ${c.samples} samples`);
   }
@@ -108,7 +109,7 @@ test('Penumbra converges, the path tracer takes over by the rule, a camera move 
   const tracing = await waitPhase('tracing', 60_000, 'Penumbra did not converge');
   assert.ok(tracing.penumbraFrames >= 1, `Penumbra frames ${tracing.penumbraFrames}`);
   assert.equal(tracing.opacity, '0', 'the path tracer is hidden before the swap');
-  assert.deepEqual(tracing.rule, { factor: 0.5, floor: 1 / 255, minSamples: 2 }, 'the default rule');
+  assert.deepEqual(tracing.rule, { factor: 0.5, floor: 1 / 255, minSamples: 16 }, 'the default rule');
 
   // The path tracer takes over when the rule fires, with a cross-fade.
   const swapped = await waitPhase('pathtracer', FIRST_SWAP_MS, 'the path tracer never took over');

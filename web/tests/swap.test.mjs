@@ -77,17 +77,20 @@ test('the rule: swap when noise <= factor x bias or noise <= floor, never before
   };
   // Noise 0.1 against bias 0.05: no swap (default factor 0.5).
   assert.equal(RULE_DEFAULTS.factor, 0.5);
-  assert.equal(at(0.1, 0.05, 8).swap, false);
+  assert.equal(RULE_DEFAULTS.minSamples, 16);
+  assert.equal(at(0.1, 0.05, 16).swap, false);
   // Noise 0.02 against bias 0.05: swap.
-  const yes = at(0.02, 0.05, 8);
+  const yes = at(0.02, 0.05, 16);
   assert.ok(yes.swap && /<= 0.5 x bias/.test(yes.why), yes.why);
   // A Penumbra image without bias: only the floor lets the path tracer take over.
-  assert.equal(at(0.02, 0, 8).swap, false);
+  assert.equal(at(0.02, 0, 16).swap, false);
   const floor = at(0.001, 0, 64);
   assert.ok(floor.swap && /floor/.test(floor.why), floor.why);
   // Thresholds can be changed (the page takes them from its URL).
-  assert.equal(at(0.05, 0.06, 8, { factor: 1 }).swap, true);
-  assert.equal(at(0.02, 0.05, 8, { minSamples: 16 }).swap, false);
+  assert.equal(at(0.05, 0.06, 16, { factor: 1 }).swap, true);
+  // Never before minSamples, however clear the case.
+  assert.equal(at(0.02, 0.05, 8).swap, false);
+  assert.equal(at(0.02, 0.05, 8, { minSamples: 8 }).swap, true);
 });
 
 test('the path tracer stays out of the core bundle: nothing in web/lib imports it', () => {
