@@ -300,6 +300,10 @@ def write_report(a, results, skipped, frames, when):
     L.append("")
     L.append("```\ntools/evaluate            # --render-refs also makes missing references\n```")
     L.append("")
+    L.append("The browser's path-tracer hand-off (Penumbra against three-gpu-pathtracer at the moment "
+             "the path tracer takes over) has its own table: [handoff.md](handoff.md) "
+             "(`node tools/handoff-eval.mjs`).")
+    L.append("")
     sizes = " and ".join(sorted({r["size"] for r in results.values()}))
     L.append("**Setup.** Every scene is rendered at %s on this 2-core machine (everything ran "
              "under `nice -n 15` on an otherwise lightly used machine; timings vary by about 20 %%). "

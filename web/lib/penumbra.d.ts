@@ -116,6 +116,30 @@ export interface CameraSpec {
   yfov?: number;
 }
 
+/** The camera in use (viewer.camera, the 'camera' event). */
+export interface CameraInfo {
+  name: string;
+  /** Column-major camera-to-world matrix (the camera looks down its -Z, +Y up). */
+  world: number[];
+  eye: Vec3;
+  forward: Vec3;
+  up: Vec3;
+  /** Vertical field of view in radians, and the near plane. */
+  yfov: number;
+  znear: number;
+  orthographic: boolean;
+  ymag: number;
+}
+
+/** A read-back of the last complete frame at the render size: RGBA floats, row 0 at the top. */
+export interface PixelsResult {
+  width: number;
+  height: number;
+  /** Frames accumulated in it. */
+  frames: number;
+  data: Float32Array;
+}
+
 export interface ViewerState {
   frame: number;
   total: number;
@@ -166,6 +190,8 @@ export interface ViewerEvents {
   error: Error;
   contextlost: Record<string, never>;
   contextrestored: Record<string, never>;
+  /** The camera changed (orbit controls, setCamera): accumulation restarts. */
+  camera: CameraInfo;
 }
 
 export declare class Viewer {
@@ -174,6 +200,8 @@ export declare class Viewer {
   readonly info: { context: string; report: string; scene: SceneInfo | null };
   readonly state: ViewerState;
   readonly settings: EffectiveSettings;
+  /** The camera in use. */
+  readonly camera: CameraInfo;
   /** Every key setSettings() takes, from the renderer's settings schema plus budgetMs and resolutionScale. */
   readonly settingsSchema: SettingSchemaEntry[];
   /**
@@ -192,6 +220,11 @@ export declare class Viewer {
   off<K extends keyof ViewerEvents>(event: K, handler: (detail: ViewerEvents[K]) => void): void;
   /** The canvas as PNG. */
   screenshot(): Promise<Blob>;
+  /**
+   * The last complete frame: linear radiance before exposure, or with `display: true` the image
+   * as displayed (exposure, tone mapping, sRGB; values in [0, 1]).
+   */
+  readPixels(options?: { display?: boolean }): Promise<PixelsResult>;
   benchmark(options?: { frames?: number }): Promise<BenchmarkResult>;
   dispose(): void;
 }

@@ -122,7 +122,7 @@ export class Viewer {
       pv_step_part: w('pv_step_part', n, []), pv_set_tiles: w('pv_set_tiles', n, [n]),
       pv_last_part: w('pv_last_part', n, []), pv_last_parts: w('pv_last_parts', n, []),
       pv_sync: w('pv_sync', null, []), pv_present: w('pv_present', s, [n, n]),
-      pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
+      pv_read: w('pv_read', s, [n]), pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
       pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
       pv_context_lost: w('pv_context_lost', null, []),
       pv_context_restored: w('pv_context_restored', s, []),
@@ -149,6 +149,13 @@ export class Viewer {
   // renderer's schema plus the JS side's budgetMs and resolutionScale.
   get settingsSchema() {
     return this.#schema.map((e) => ({ ...e }));
+  }
+
+  // The camera in use: {eye, forward, up, yfov, znear, world (column-major camera-to-world),
+  // orthographic, ymag, name}; the 'camera' event sends the same when it changes.
+  get camera() {
+    this.#check();
+    return this.#call('pv_get_state').camera;
   }
 
   get settings() {
@@ -240,6 +247,7 @@ export class Viewer {
       const cam = this.#call('pv_reset_camera');
       if (this.#sceneInfo) this.#orbit = OrbitCamera.fromCamera(cam, this.#sceneInfo.bounds);
       this.#restarted();
+      this.#emit('camera', cam);
       return;
     }
     const v3 = (v, what) => {
@@ -251,12 +259,13 @@ export class Viewer {
     const eye = v3(camera && camera.eye, 'eye'), target = v3(camera.target, 'target');
     const up = camera.up ? v3(camera.up, 'up') : [0, 1, 0];
     const yfov = camera.yfov ?? (this.#orbit ? this.#orbit.yfov : 0.8);
-    this.#call('pv_set_camera', ...eye, ...target, ...up, yfov);
+    const cam = this.#call('pv_set_camera', ...eye, ...target, ...up, yfov);
     if (!this.#orbit) this.#orbit = new OrbitCamera();
     this.#orbit.target = [...target];
     this.#orbit.yfov = yfov;
     this.#orbit.setEye(eye);
     this.#restarted();
+    this.#emit('camera', cam);
   }
 
   // Any key of settingsSchema (frames, fd, occlusionDistance, exposure, toneMapper,
@@ -302,6 +311,16 @@ export class Viewer {
       this.#canvas.toBlob((b) => (b ? resolve(b) : reject(new PenumbraError('screenshot failed'))),
                           'image/png');
     });
+  }
+
+  // The last complete frame at the render size as {width, height, frames, data}: RGBA floats,
+  // row 0 at the top; the linear radiance before exposure, or with {display: true} the image as
+  // displayed (exposure, tone mapping, sRGB; in [0, 1]). Hosts compare it with other renderers.
+  async readPixels({ display = false } = {}) {
+    this.#check();
+    const r = this.#call('pv_read', display ? 1 : 0);
+    const data = new Float32Array(this.#mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
+    return { width: r.width, height: r.height, frames: r.frames, data };
   }
 
   // Milliseconds per intermediate frame at the current size: one warm-up accumulation (shaders
@@ -532,9 +551,10 @@ export class Viewer {
     }
     if (this.#cameraDirty && this.#orbit) {
       const c = this.#orbit.toCamera();
-      this.#call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
+      const cam = this.#call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
       this.#cameraDirty = false;
       this.#restarted();
+      this.#emit('camera', cam);
     }
     if (!this.#sceneInfo) return;  // nothing to show yet
 

@@ -64,6 +64,7 @@ struct Viewer {
   bool environmentFromUser = false;  // set through the API, not by a scene file
   std::string lastError;
   FramePart lastPart;  // what the last pv_step_part did
+  Image readback;      // backs the pointer pv_read returns until the next pv_read
 };
 
 std::unique_ptr<Viewer> gViewer;
@@ -480,6 +481,25 @@ EMSCRIPTEN_KEEPALIVE const char* pv_present(int width, int height) {
     if (!v) return errorJson(v.message());
     if (auto st = (*v)->renderer->present(width, height); !st) return errorJson(st.message());
     return {{"ok", true}};
+  });
+}
+
+// The running mean of linear radiance before exposure (display = 0) or the displayed image
+// (display = 1: exposure, tone mapping and sRGB, in [0, 1]), RGBA float at the render size, row 0
+// at the top: {width, height, frames, ptr} with ptr into the wasm heap, valid until the next
+// pv_read; or {error}. The images of the last complete frame, as present() shows it.
+EMSCRIPTEN_KEEPALIVE const char* pv_read(int display) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    Renderer& r = *(*v)->renderer;
+    auto img = display ? r.readDisplay() : r.readRadiance();
+    if (!img) return errorJson(img.message());
+    if (img->channels != 4) return errorJson("read-back: expected an RGBA image");
+    (*v)->readback = std::move(*img);
+    const Image& out = (*v)->readback;
+    return {{"width", out.width}, {"height", out.height}, {"frames", r.framesDone()},
+            {"ptr", reinterpret_cast<uintptr_t>(out.pixels.data())}};
   });
 }
 

@@ -163,6 +163,64 @@ test('canvas matches native penumbra-render (same scene, camera, settings, size)
   });
 });
 
+// Khronos PBR Neutral and the sRGB curve, as glsl/ applies them for display.
+function pbrNeutral([r, g, b]) {
+  const x = Math.min(r, g, b);
+  const offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+  let c = [r - offset, g - offset, b - offset];
+  const peak = Math.max(...c);
+  const start = 0.8 - 0.04, d = 1 - start;
+  if (peak < start) return c;
+  const newPeak = 1 - (d * d) / (peak + d - start);
+  c = c.map((v) => v * newPeak / peak);
+  const t = 1 - 1 / (0.15 * (peak - newPeak) + 1);
+  return c.map((v) => v * (1 - t) + newPeak * t);
+}
+const srgb = (v) => (v <= 0.0031308 ? 12.92 * v : 1.055 * v ** (1 / 2.4) - 0.055);
+
+test('readPixels gives the linear radiance and the displayed image of the converged frame', { timeout: TEST_MS }, async () => {
+  assert.ok(shared.converged, 'needs the converged canvas of the first test');
+  await step('readpixels', page, async () => {
+    const r = await page.evaluate(async () => {
+      const v = window.penumbraPage.viewer;
+      const lin = await v.readPixels();
+      const disp = await v.readPixels({ display: true });
+      return { exposure: v.settings.exposure, toneMapper: v.settings.toneMapper,
+               lin: { ...lin, data: [...lin.data] }, disp: { ...disp, data: [...disp.data] } };
+    });
+    for (const img of [r.lin, r.disp]) {
+      assert.equal(img.width, SIZE);
+      assert.equal(img.height, SIZE);
+      assert.equal(img.frames, FRAMES);
+      assert.equal(img.data.length, SIZE * SIZE * 4);
+    }
+    assert.equal(r.toneMapper, 'pbr-neutral');
+    // The display image is the canvas (same pass, row 0 on top) ...
+    let maxCanvas = 0, maxTone = 0, sumTone = 0, lit = 0;
+    for (let i = 0; i < r.disp.data.length; i += 4) {
+      for (let c = 0; c < 3; c++) {
+        const d = r.disp.data[i + c];
+        assert.ok(d >= 0 && d <= 1, `display value ${d} out of [0, 1]`);
+        maxCanvas = Math.max(maxCanvas, Math.abs(d - shared.converged.data[i + c] / 255));
+      }
+      // ... and the linear radiance, exposed by 2^EV, tone-mapped and sRGB-encoded, is the display.
+      const rgb = [0, 1, 2].map((c) => r.lin.data[i + c] * 2 ** r.exposure);
+      if (Math.max(...rgb) > 0.01) lit++;
+      const t = pbrNeutral(rgb).map((v) => srgb(Math.min(1, Math.max(0, v))));
+      for (let c = 0; c < 3; c++) {
+        const e = Math.abs(t[c] - r.disp.data[i + c]);
+        maxTone = Math.max(maxTone, e);
+        sumTone += e;
+      }
+    }
+    const meanTone = sumTone / (SIZE * SIZE * 3);
+    assert.ok(lit > SIZE * SIZE / 2, `most pixels lit (${lit})`);
+    assert.ok(maxCanvas <= 1.5 / 255, `display read-back vs canvas: max ${maxCanvas}`);
+    assert.ok(meanTone <= 1 / 255 && maxTone <= 2 / 255,
+              `tone-mapped linear read-back vs display: mean ${meanTone}, max ${maxTone}`);
+  });
+});
+
 test('orbit drag restarts accumulation, at lower resolution while moving', { timeout: TEST_MS }, async () => {
   await step('orbit', page, async () => {
     // A 1 ms budget: frame 1 always overruns it here, so moving must lower the resolution.
