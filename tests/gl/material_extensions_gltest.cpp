@@ -14,18 +14,26 @@ class MaterialExtensionsGLTest : public GlFixture {};
 
 constexpr int kSize = 48;
 
-// Mean radiance (RGB) of the sphere's central 28x28 pixels under a uniform environment.
-glm::vec3 sphereUnderUniformSky(const Material& material, glm::vec3 sky) {
+// A unit sphere seen from 4 units away with the given vertical field of view, 8 frames.
+Result<Image> renderSphere(const Material& material, glm::vec3 sky, float fovDeg,
+                           const std::vector<Light>& lights = {}) {
   Scene s;
   s.materials.push_back(material);
   s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
+  s.lights = lights;
   finishScene(s);
   RenderSettings rs;
   rs.width = rs.height = kSize;
   rs.progressive.frames = 8;
   auto img =
-      renderRadiance(s, uniformEnvironment(sky), lookAtCamera({0, 0, 4}, {0, 0, 0}, 20.0f), rs);
+      renderRadiance(s, uniformEnvironment(sky), lookAtCamera({0, 0, 4}, {0, 0, 0}, fovDeg), rs);
   EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
+  return img;
+}
+
+// Mean radiance (RGB) of the sphere's central 28x28 pixels under a uniform environment.
+glm::vec3 sphereUnderUniformSky(const Material& material, glm::vec3 sky) {
+  auto img = renderSphere(material, sky, 20.0f);
   if (!img.ok()) return glm::vec3(-1.0f);
   glm::vec3 sum(0.0f);
   for (int y = 10; y < 38; ++y) {
@@ -103,17 +111,7 @@ struct CentreAndRim {
 };
 CentreAndRim sphereCentreAndRim(const Material& material, glm::vec3 sky,
                                 const std::vector<Light>& lights = {}) {
-  Scene s;
-  s.materials.push_back(material);
-  s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
-  s.lights = lights;
-  finishScene(s);
-  RenderSettings rs;
-  rs.width = rs.height = kSize;
-  rs.progressive.frames = 8;
-  auto img =
-      renderRadiance(s, uniformEnvironment(sky), lookAtCamera({0, 0, 4}, {0, 0, 0}, 40.0f), rs);
-  EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
+  auto img = renderSphere(material, sky, 40.0f, lights);
   CentreAndRim out;
   if (!img.ok()) return out;
   // The sphere's radius on screen: tan(asin(1/4)) / tan(20 deg) of the half width.

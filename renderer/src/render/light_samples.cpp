@@ -8,29 +8,35 @@
 
 namespace penumbra::render {
 
-Light sunLight(const ibl::Sun& sun, const RenderSettings& settings) {
+namespace {
+
+// A directional light arriving from `towards` (a direction in the environment's frame), turned
+// and scaled like the environment.
+Light environmentLight(const char* name, const glm::vec3& towards, const glm::vec3& color,
+                       const RenderSettings& settings) {
   const glm::mat3 turn(
       glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation), glm::vec3(0, 1, 0)));
   Light l;
-  l.name = "environment sun";
+  l.name = name;
   l.type = LightType::Directional;
-  l.direction = -glm::normalize(turn * sun.direction);
-  l.color = sun.irradiance;
+  l.direction = -glm::normalize(turn * towards);
+  l.color = color;
   l.intensity = settings.environmentIntensity;
+  return l;
+}
+
+}  // namespace
+
+Light sunLight(const ibl::Sun& sun, const RenderSettings& settings) {
+  Light l = environmentLight("environment sun", sun.direction, sun.irradiance, settings);
   l.angularDiameter = 2.0f * sun.angularRadius;
   return l;
 }
 
 Light skyLight(const ibl::SkySample& sample, const RenderSettings& settings) {
-  const glm::mat3 turn(
-      glm::rotate(glm::mat4(1.0f), glm::radians(settings.environmentRotation), glm::vec3(0, 1, 0)));
-  Light l;
-  l.name = "sky shadow sample";
-  l.type = LightType::Directional;
-  l.direction = -glm::normalize(turn * sample.direction);
-  l.color = sample.pdf > 0.0f ? sample.radiance / sample.pdf : glm::vec3(0.0f);
-  l.intensity = settings.environmentIntensity;
-  return l;
+  return environmentLight("sky shadow sample", sample.direction,
+                          sample.pdf > 0.0f ? sample.radiance / sample.pdf : glm::vec3(0.0f),
+                          settings);
 }
 
 glm::vec3 punctualDirection(const Light& l, glm::vec2 u, const RenderSettings& settings) {
