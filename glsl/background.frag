@@ -2,11 +2,12 @@
 #include "chunks/environment.glsl"
 uniform mat4 uInvViewProj;
 uniform float uBackgroundBlur;  // perceptual roughness of the mip shown
+uniform float uBackgroundAlpha;  // 1, or a probe capture's distance for the sky
 in vec2 vUv;
 out vec4 fragColor;
 void main() {
   vec4 far = uInvViewProj * vec4(vUv * 2.0 - 1.0, 0.0, 1.0);  // z = 0: finite with an infinite far plane
   vec4 near = uInvViewProj * vec4(vUv * 2.0 - 1.0, -1.0, 1.0);
   vec3 dir = normalize(far.xyz / far.w - near.xyz / near.w);
-  fragColor = vec4(envRadiance(dir, uBackgroundBlur), 1.0);
+  fragColor = vec4(envRadiance(dir, uBackgroundBlur), uBackgroundAlpha);
 }

@@ -5,9 +5,12 @@
 //   PN_OCCLUSION  progressive occlusion and screen-space indirect light
 //   PN_AREA       area-light samples with shadow maps
 //   PN_PUNCTUAL   KHR_lights_punctual lights
+//   PN_CAPTURE    a probe's cube capture (passes/probe_volume.h): diffuse light only, alpha the
+//                 signed distance to the probe
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
+#include "chunks/probe_volume.glsl"
 #if PN_AREA
 #include "chunks/area_lights.glsl"
 #endif
@@ -44,10 +47,23 @@ uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: un
 uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction of travel,
                                             // w tan(angular radius); 0 for the others
 
+#if PN_CAPTURE
+uniform int uSingleSided;  // the material is not double-sided: its back faces are walls' insides
+#endif
+
 out vec4 fragColor;
 
 void main() {
   vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
+#if PN_CAPTURE
+  // What the probe sees, and how far (in the volume's diagonals; back faces negative, black:
+  // a probe that sees mostly those is buried in geometry).
+  float probeDistance = length(uViewOrigin.xyz - vWorldPos) / uProbeDiagonal;
+  if (!gl_FrontFacing && uSingleSided != 0) {
+    fragColor = vec4(0.0, 0.0, 0.0, -probeDistance * uEnvWeight);
+    return;
+  }
+#endif
   SurfaceInputs s = readSurface(v);
   vec3 n = s.normal;
   float NoV = max(dot(n, v), 1e-4);
@@ -55,6 +71,9 @@ void main() {
     // KHR_materials_unlit: the base colour is the radiance (once, in the first batch).
     fragColor = vec4(s.baseColor.rgb * uEnvWeight,
                      uEnvWeight * (uAlphaMode == 2 && uCoverageFrame < 0 ? s.baseColor.a : 1.0));
+#if PN_CAPTURE
+    fragColor.a = probeDistance * uEnvWeight;
+#endif
     return;
   }
   vec3 diffuseColor = s.baseColor.rgb * (1.0 - s.metallic);
@@ -67,11 +86,21 @@ void main() {
   // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
   // white furnace reflects exactly the environment.
   diffuseColor *= vec3(1.0) - specularScale;
+#if PN_CAPTURE
+  // Probes store irradiance: only the view-independent diffuse light leaves a captured surface.
+  f0 = vec3(0.0);
+  f90 = 0.0;
+  specularScale = vec3(0.0);
+#endif
 
   // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on the geometric normal
   // (its own normal texture is not sampled). The base below gets what the coat lets through,
   // 1 - coat F(n.v), as the extension defines.
+#if PN_CAPTURE
+  float coat = 0.0;
+#else
   float coat = uClearcoat;
+#endif
   vec3 coatN = normalize(vNormal);
   if (dot(coatN, n) < 0.0) coatN = -coatN;
   float coatNoV = max(dot(coatN, v), 1e-4);
@@ -81,7 +110,11 @@ void main() {
 
   // KHR_materials_sheen: a Charlie lobe over the base, which receives what the sheen does not
   // reflect (glTF's albedo scaling, 1 - max(sheenColor) E(n.v)). Under the coat, like the base.
+#if PN_CAPTURE
+  vec3 sheenColor = vec3(0.0);
+#else
   vec3 sheenColor = uSheenColor;
+#endif
   float sheenMax = max(sheenColor.r, max(sheenColor.g, sheenColor.b));
   float sheenA = sheenAlpha(uSheenRoughness);
   float sheenE = sheenMax > 0.0 ? sheenAlbedo(NoV, uSheenRoughness) : 0.0;
@@ -95,6 +128,18 @@ void main() {
   // Environment.
   if (uEnvWeight > 0.0) {
     vec3 irradiance = envIrradiance(n);
+    if (uProbeEnabled != 0) {
+      // The probe volume: the environment's light and every bounce, with the visibility the
+      // probes saw (which also stands in for the sky-shadow correction).
+      vec4 pv = probeIrradiance(vWorldPos, n, v);
+#if PN_CAPTURE
+      // Captures build on what the volume holds, nothing else: each adds a bounce.
+      irradiance = pv.rgb;
+#else
+      if (pv.a > 1e-3) irradiance = pv.rgb;
+#endif
+      skyLossWeight = pv.a > 1e-3 ? 0.0 : skyLossWeight;
+    }
     vec3 r = reflect(-v, n);
     vec3 prefiltered = envRadiance(r, s.perceptualRoughness);
 #if PN_OCCLUSION
@@ -223,6 +268,11 @@ void main() {
     }
   }
 
+#endif
+#if PN_CAPTURE
+  // Emitters are left out as in screen-space indirect light: their light is the area lights'.
+  fragColor = vec4(color, probeDistance * uEnvWeight);
+  return;
 #endif
   color += s.emissive * uEnvWeight;
   // Alpha marks what screen-space indirect light may reuse: emitters are excluded (their light

@@ -40,6 +40,9 @@ struct Row {
   double readBackMs = 0;
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0, firstDisplayMs = 0;
   double firstLightingMs = 0, firstAccumulateMs = 0;
+  double probeMs = 0;
+  int probeCaptures = 0;
+  ProbeVolumeInfo probes;
   int shadowPasses = 0;
   int lightingPasses = 0;
 };
@@ -74,6 +77,8 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
     row.shadowMs += f.shadowMs;
     row.lightingMs += f.lightingMs;
     row.accumulateMs += f.accumulateMs;
+    row.probeMs += f.probeMs;
+    row.probeCaptures += f.probeCaptures;
     row.shadowPasses += f.shadowPasses;
     row.lightingPasses += f.lightingPasses;
   };
@@ -103,6 +108,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   row.perFrameMs = ms(t1, t2) / std::max(frames - 1, 1);
   row.totalS = ms(t0, t2) / 1000.0;
   row.readBackMs = ms(t2, t3);
+  row.probes = (*r)->probeVolumeInfo();
   return row;
 }
 
@@ -151,12 +157,18 @@ int main(int argc, char** argv) {
         const double n = frames;
         std::printf(
             "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f (%d "
-            "passes), accumulate %.1f; frame 1: lighting %.1f, accumulate %.1f, tone map %.1f | | "
-            "| | | | | "
-            "|\n",
+            "passes), accumulate %.1f, probe volume %.1f (%d captures); frame 1: lighting %.1f, "
+            "accumulate %.1f, tone map %.1f | | | | | | | |\n",
             row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
-            row->lightingPasses, row->accumulateMs / n, row->firstLightingMs,
-            row->firstAccumulateMs, row->firstDisplayMs);
+            row->lightingPasses, row->accumulateMs / n, row->probeMs / n, row->probeCaptures,
+            row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
+      }
+      if (row->probes.probes > 0) {
+        std::printf("|   probe volume: %d probes (%dx%dx%d), %.2f MB GPU memory, %.1f captures per "
+                    "probe after both runs | | | | | | | |\n",
+                    row->probes.probes, row->probes.counts[0], row->probes.counts[1],
+                    row->probes.counts[2], static_cast<double>(row->probes.bytes) / 1048576.0,
+                    row->probes.meanCaptures);
       }
       std::fflush(stdout);
     }

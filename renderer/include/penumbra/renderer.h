@@ -62,6 +62,16 @@ struct FrameStats {
   bool occlusion = false;
   // Milliseconds per pass, filled only with RendererOptions::profilePasses.
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0;
+  int probeCaptures = 0;  // probes of the probe volume captured in this frame
+  double probeMs = 0;     // their time (with profilePasses)
+};
+
+// The probe volume as laid out for the current scene (probes 0: off or unavailable).
+struct ProbeVolumeInfo {
+  int probes = 0;
+  int counts[3] = {0, 0, 0};
+  int64_t bytes = 0;          // GPU memory: atlases, capture target, light maps
+  double meanCaptures = 0.0;  // captures per probe so far
 };
 
 class Renderer {
@@ -97,6 +107,7 @@ class Renderer {
   int framesDone() const;
   int totalFrames() const;
   const FrameStats& lastFrame() const;
+  ProbeVolumeInfo probeVolumeInfo() const;
 
   // The running mean of linear radiance (before exposure), RGBA float, row 0 at the top.
   Result<Image> readRadiance();

@@ -176,6 +176,10 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   Bounds bounds;                      // world space, of all instances
+  // The probe volume's box and probes per axis, from a scene file (an invalid box: the
+  // bounds; a count of 0: from the density setting).
+  Bounds probeBox;
+  glm::ivec3 probeCounts{0};
   std::vector<std::string> warnings;  // non-fatal problems (unknown optional extension, ...)
   size_t triangleCount() const;
 };

@@ -41,6 +41,12 @@ struct ProgressiveSettings {
   // Angular diameter of directional lights in degrees: their shadow-map samples spread over
   // it, so shadow edges soften with distance as under the sun (0.53 degrees).
   float directionalAngle = 0.53f;
+  // Probe volume: world-space indirect light from a grid of irradiance probes over the scene's
+  // bounds, captured a few a frame (docs/architecture.md). Diffuse light that screen-space
+  // tracing cannot resolve comes from it instead of the distant environment.
+  bool probeVolume = true;
+  float probeDensity = 4.0f;  // probes along the scene's longest side (the others follow)
+  int probesPerFrame = 2;     // probe captures per intermediate frame
   uint32_t seed = 1;  // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };

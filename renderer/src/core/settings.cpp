@@ -115,6 +115,19 @@ const SettingInfo kSchema[] = {
      SettingType::Float, 0, 30, false, false, false, true,
      "angular diameter of directional lights in degrees (soft shadow edges; 0.53 = the sun)",
      PN_FIELD(progressive.directionalAngle, float)},
+    {"probeVolume", "progressive", "probeVolume", "--no-gi", SettingType::Bool, 0, 1, false,
+     false, false, true,
+     "probe volume: multi-bounce indirect light from irradiance probes over the scene, captured "
+     "a few per frame",
+     PN_BOOL(progressive.probeVolume)},
+    {"probeDensity", "progressive", "probeDensity", "--probe-density", SettingType::Float, 1, 64,
+     false, false, false, true,
+     "probes along the longest side of the scene's bounds (the other sides get as many per unit "
+     "length)",
+     PN_FIELD(progressive.probeDensity, float)},
+    {"probesPerFrame", "progressive", "probesPerFrame", "--probes-per-frame", SettingType::Int, 1,
+     64, false, false, false, true, "probe captures per intermediate frame",
+     PN_FIELD(progressive.probesPerFrame, int)},
     {"seed", "progressive", "seed", "--seed", SettingType::UInt, 0, 4294967295.0, false, false,
      false, true, "seed of the sample sequences", PN_FIELD(progressive.seed, uint32_t)},
 };

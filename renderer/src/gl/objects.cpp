@@ -349,6 +349,12 @@ void apply(const PipelineState& s) {
       glBlendEquation(GL_FUNC_ADD);
       glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       break;
+    case Blend::ConstantMix:
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendColor(0.0f, 0.0f, 0.0f, s.blendWeight);
+      glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+      break;
   }
   switch (s.cull) {
     case Cull::None:

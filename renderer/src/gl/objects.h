@@ -123,7 +123,9 @@ class TimerQuery {
 };
 
 // Fixed-function state of a pass, applied as a whole so passes never inherit stale state.
-enum class Blend { None, Additive, Alpha, PremultipliedAlpha };
+// ConstantMix: dst = src w + dst (1 - w) with w = PipelineState::blendWeight (a running mean
+// written in place, one draw per weight).
+enum class Blend { None, Additive, Alpha, PremultipliedAlpha, ConstantMix };
 enum class Cull { None, Back, Front };
 enum class DepthTest { Off, Less, LessEqual, Equal, Always };
 
@@ -136,6 +138,7 @@ struct PipelineState {
   bool colorWrite = true;
   float polygonOffsetFactor = 0.0f;  // slope-scaled depth bias (shadow maps)
   float polygonOffsetUnits = 0.0f;
+  float blendWeight = 1.0f;  // Blend::ConstantMix only
 };
 
 void apply(const PipelineState& state);

@@ -3,9 +3,10 @@
 namespace penumbra::passes {
 
 Result<FullscreenPass> FullscreenPass::create(gl::ShaderLibrary& library, const char* fragmentFile,
-                                              bool farPlane) {
-  auto program =
-      library.program("fullscreen.vert", fragmentFile, {{"PN_FAR_PLANE", farPlane ? "1" : "0"}});
+                                              bool farPlane, const gl::Defines& defines) {
+  gl::Defines all = defines;
+  all.emplace_back("PN_FAR_PLANE", farPlane ? "1" : "0");
+  auto program = library.program("fullscreen.vert", fragmentFile, all);
   if (!program) return program.error();
   FullscreenPass pass;
   pass.program_ = *program;

@@ -11,7 +11,7 @@ class FullscreenPass {
  public:
   // farPlane: draw at depth 1 (with begin(true), only where no geometry was drawn).
   static Result<FullscreenPass> create(gl::ShaderLibrary& library, const char* fragmentFile,
-                                       bool farPlane = false);
+                                       bool farPlane = false, const gl::Defines& defines = {});
   // Uses the program and sets the pipeline state (no depth test unless `depthTest`).
   const gl::Program& begin(bool depthTest = false) const;
   void draw() const;

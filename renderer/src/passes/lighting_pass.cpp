@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "passes/limits.h"
+#include "passes/probe_volume.h"
 #include "passes/scene_draw.h"
 
 namespace penumbra::passes {
@@ -17,9 +18,19 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
     auto p = library.program("mesh.vert", "lighting.frag",
                              {{"PN_OCCLUSION", (v & 1) ? "1" : "0"},
                               {"PN_AREA", (v & 2) ? "1" : "0"},
-                              {"PN_PUNCTUAL", (v & 4) ? "1" : "0"}});
+                              {"PN_PUNCTUAL", (v & 4) ? "1" : "0"},
+                              {"PN_CAPTURE", "0"}});
     if (!p) return p.error();
     pass.variants_[v] = *p;
+  }
+  for (int v = 0; v < 4; ++v) {
+    auto p = library.program("mesh.vert", "lighting.frag",
+                             {{"PN_OCCLUSION", "0"},
+                              {"PN_AREA", (v & 1) ? "1" : "0"},
+                              {"PN_PUNCTUAL", (v & 2) ? "1" : "0"},
+                              {"PN_CAPTURE", "1"}});
+    if (!p) return p.error();
+    pass.captureVariants_[v] = *p;
   }
   auto depth = library.program("mesh.vert", "prepass.frag");
   if (!depth) return depth.error();
@@ -61,6 +72,15 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uEnvWeight", b.first ? 1.0f : 0.0f);
   p.set("uCoverageFrame", b.coverageFrame);
   p.set("uCoverageStream", 0);
+  if (b.probes) {
+    b.probes->bind(p, true);
+  } else {
+    p.set("uProbeEnabled", 0);
+    dummy_.bind(kUnitProbeIrradiance);
+    dummy_.bind(kUnitProbeDepth);
+    p.set("uProbeIrradiance", kUnitProbeIrradiance);
+    p.set("uProbeDepth", kUnitProbeDepth);
+  }
 
   // This batch's area-light samples.
   std::vector<glm::vec3> pos, dir, right, up, radiance;
@@ -152,7 +172,43 @@ void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRo
   b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
   bg.set("uInvViewProj", glm::inverse(b.camera->projection * b.camera->view));
   bg.set("uBackgroundBlur", b.settings->backgroundBlur);
+  bg.set("uBackgroundAlpha", 1.0f);
   background_->draw();
+}
+
+Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<CaptureView>& views,
+                                 float skyDistance) {
+  if (!b.scene || views.empty()) return {};
+  const glm::mat3 envRotation(glm::rotate(
+      glm::mat4(1.0f), glm::radians(-b.settings->environmentRotation), glm::vec3(0, 1, 0)));
+  const gl::Program& p =
+      *captureVariants_[(b.area.empty() ? 0 : 1) | (b.punctual.empty() ? 0 : 2)];
+  setUniforms(p, b, envRotation);
+  gl::PipelineState state;
+  if (!b.first) {
+    state.depthTest = gl::DepthTest::LessEqual;
+    state.depthWrite = false;
+    state.blend = gl::Blend::Additive;
+  }
+  for (const CaptureView& view : views) {
+    gl::setViewport(view.x, view.y, view.size, view.size);
+    p.use();
+    p.set("uViewProj", view.camera.projection * view.camera.view);
+    p.set("uViewOrigin", view.camera.viewOrigin);
+    drawItemsBothSides(p, *b.scene, b.scene->opaque(), state);
+    if (b.coverageFrame >= 0) drawItemsBothSides(p, *b.scene, b.scene->blended(), state);
+    if (b.first) {
+      // The sky, wherever the probe sees no geometry (whether or not the view shows it).
+      const gl::Program& bg = background_->begin(/*depthTest=*/true);
+      b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity,
+                          envRotation);
+      bg.set("uInvViewProj", glm::inverse(view.camera.projection * view.camera.view));
+      bg.set("uBackgroundBlur", 0.0f);
+      bg.set("uBackgroundAlpha", skyDistance);
+      background_->draw();
+    }
+  }
+  return {};
 }
 
 Status LightingPass::draw(const LightingBatch& b) {

@@ -25,6 +25,8 @@
 
 namespace penumbra::passes {
 
+class ProbeVolume;
+
 // One area-light sample of the batch (sorted by light), with its shadow map if it has one.
 struct AreaSampleDraw {
   const Light* light = nullptr;
@@ -63,12 +65,25 @@ struct LightingBatch {
   int coverageFrame = -1;  // stochastic coverage index of BLEND surfaces (< 0: alpha-blend)
   std::vector<AreaSampleDraw> area;
   std::vector<PunctualDraw> punctual;
+  // The probe volume (null or inactive: diffuse environment light as before).
+  const ProbeVolume* probes = nullptr;
+};
+
+// One face of a probe capture: its camera and its square in the bound capture target.
+struct CaptureView {
+  CameraMatrices camera;
+  int x = 0, y = 0, size = 0;
 };
 
 class LightingPass {
  public:
   static Result<LightingPass> create(gl::ShaderLibrary& library);
   Status draw(const LightingBatch& batch);
+  // Draws a batch into the bound framebuffer once per view (the faces of probe captures) with
+  // the PN_CAPTURE variant: both faces of every surface, and where no geometry is, the
+  // environment with alpha `skyDistance` (first batch). Extra batches add their light.
+  Status drawCapture(const LightingBatch& batch, const std::vector<CaptureView>& views,
+                     float skyDistance);
 
  private:
   gl::Program* variant(bool occlusion, bool area, bool punctual) const {
@@ -78,6 +93,7 @@ class LightingPass {
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
 
   gl::Program* variants_[8] = {};
+  gl::Program* captureVariants_[4] = {};  // area | punctual << 1
   gl::Program* depthOnly_ = nullptr;
   std::optional<FullscreenPass> background_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none

@@ -15,4 +15,18 @@ void drawItems(const gl::Program& program, const GpuScene& scene,
   }
 }
 
+void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
+                        const std::vector<DrawItem>& items, gl::PipelineState state) {
+  state.cull = gl::Cull::None;
+  for (const DrawItem& item : items) {
+    const Material& m = scene.material(item.material).source;
+    state.frontFaceClockwise = item.mirrored;  // gl_FrontFacing must still mean the front
+    gl::apply(state);
+    program.set("uSingleSided", m.doubleSided ? 0 : 1);
+    GpuScene::bindTransform(program, item);
+    scene.bindMaterial(program, item.material);
+    item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+  }
+}
+
 }  // namespace penumbra::passes

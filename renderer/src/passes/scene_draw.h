@@ -14,4 +14,9 @@ namespace penumbra::passes {
 void drawItems(const gl::Program& program, const GpuScene& scene,
                const std::vector<DrawItem>& items, bool material, gl::PipelineState state);
 
+// Both faces of every item, with uSingleSided telling the shader whether a back face is the
+// inside of a closed surface (a probe capture's test for probes buried in geometry).
+void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
+                        const std::vector<DrawItem>& items, gl::PipelineState state);
+
 }  // namespace penumbra::passes

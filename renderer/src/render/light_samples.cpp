@@ -63,4 +63,14 @@ glm::vec3 samplePosition(const Light& l, glm::vec2 u) {
   return l.position;
 }
 
+std::vector<passes::CaptureLight> captureLights(const std::vector<Light>& lights, glm::vec2 u,
+                                                const RenderSettings& settings) {
+  std::vector<passes::CaptureLight> out;
+  out.reserve(lights.size());
+  for (const Light& l : lights) {
+    out.push_back({&l, samplePosition(l, u), punctualDirection(l, u, settings)});
+  }
+  return out;
+}
+
 }  // namespace penumbra::render

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "passes/probe_volume.h"
 #include "penumbra/ibl.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
@@ -28,5 +29,9 @@ glm::vec3 punctualDirection(const Light& light, glm::vec2 u, const RenderSetting
 
 // World position of an area-light sample on the light's true surface.
 glm::vec3 samplePosition(const Light& light, glm::vec2 u);
+
+// Every light as a probe capture shades it, sampled at point u.
+std::vector<passes::CaptureLight> captureLights(const std::vector<Light>& lights, glm::vec2 u,
+                                                const RenderSettings& settings);
 
 }  // namespace penumbra::render

@@ -21,6 +21,7 @@
 #include "passes/lighting_pass.h"
 #include "passes/limits.h"
 #include "passes/prepass.h"
+#include "passes/probe_volume.h"
 #include "passes/shadow_pass.h"
 #include "passes/targets.h"
 #include "penumbra/environment.h"
@@ -69,6 +70,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::LightingPass> lighting;
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::FullscreenPass> tonemap;
+  std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
+  Bounds probeBox;                            // the scene file's, else the scene's bounds
+  glm::ivec3 probeCounts{0};                  // the scene file's (0: from the density)
   std::unique_ptr<GpuScene> scene;
   std::vector<Light> lights;  // the scene's, then the environment's sun if it has one
   std::vector<Light> sceneLights;
@@ -123,6 +127,11 @@ struct Renderer::Impl : progressive::FrameRenderer {
     auto tm = passes::FullscreenPass::create(library, "tonemap.frag");
     if (!tm) return tm.error();
     tonemap.emplace(std::move(*tm));
+    if (caps.colorBufferHalfFloat) {
+      auto pv = passes::ProbeVolume::create(library);
+      if (!pv) return pv.error();
+      probes.emplace(std::move(*pv));
+    }
     environment = nullptr;
     auto env = GpuEnvironment::create(uniformEnvironment(glm::vec3(0.0f)));
     if (!env) return env.error();
@@ -140,6 +149,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
                                s.environmentRotation != settings.environmentRotation ||
                                s.showBackground != settings.showBackground ||
                                s.backgroundBlur != settings.backgroundBlur;
+    const ProgressiveSettings previous = settings.progressive;
     settings = s;
     if (resize) {
       targets.reset();
@@ -163,8 +173,15 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (!pp) return pp.error();
       pointShadows.emplace(std::move(*pp));
     }
+    const bool relayout = force || s.progressive.probeVolume != previous.probeVolume ||
+                          s.progressive.probeDensity != previous.probeDensity;
     controller.setSettings(s.progressive);
     if (sun && restartNeeded) setLights();  // the sun turns and scales with the environment
+    if (relayout) {
+      PN_TRY(layoutProbes());
+    } else if (restartNeeded && probes) {
+      probes->clear();  // the light the volume holds changed
+    }
     updateDarkness();
     if (resize || restartNeeded) controller.invalidate();
     return {};
@@ -187,6 +204,20 @@ struct Renderer::Impl : progressive::FrameRenderer {
       infos.push_back(info);
     }
     controller.setLights(infos);
+  }
+
+  // The probe grid over the scene's (or the scene file's) box; empty when the volume is off.
+  Status layoutProbes() {
+    if (!probes) return {};
+    progressive::ProbeGrid grid;
+    if (settings.progressive.probeVolume && scene) {
+      grid = progressive::placeProbes(probeBox.valid() ? probeBox : scene->bounds(),
+                                      settings.progressive.probeDensity, probeCounts);
+    }
+    return probes->reset(grid);
+  }
+  bool probesOn() const {
+    return probes && probes->active() && settings.progressive.probeVolume && scene;
   }
 
   Camera activeCamera() const { return hasCamera ? camera : defaultCameraForBounds(); }
@@ -265,6 +296,24 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     const bool occlusion = plan.occlusion && (drawPrepass || prepassValid);
     stats.occlusion = occlusion;
+    // Probe captures: every frame but the first, which captures only while the volume is
+    // young (so it still fills while a viewer orbits and frame 1 is all it draws).
+    if (probesOn() && (plan.frame >= 2 || probes->meanCaptures() < 4.0)) {
+      units.push_back([this]() -> Status {
+        passes::ProbeCaptureInputs in{
+            .scene = scene.get(),
+            .environment = environment.get(),
+            .lights = render::captureLights(lights, probes->lightPoint(), settings),
+            .pointShadows = &*pointShadows,
+            .settings = &settings,
+            .targets = &*targets};
+        const int n = std::min(settings.progressive.probesPerFrame, probes->grid().count());
+        PN_TRY(probes->capture(*lighting, in, n));
+        stats.probeCaptures = n;
+        endPass(&stats.probeMs);
+        return {};
+      });
+    }
 
     // Split this frame's light samples: area samples go in batches of up to kMaxShadowMaps.
     std::vector<const LightSample*> area;
@@ -322,7 +371,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .first = b == 0,
           // Occlusion only in the first batch: later ones add light.
           .occlusion = b == 0 && occlusion,
-          .coverageFrame = cameraCoverageFrame(plan)});
+          .coverageFrame = cameraCoverageFrame(plan),
+          .probes = probesOn() ? &*probes : nullptr});
       passes::LightingBatch& batch = pending.batches.back();
       const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
       const size_t to = b == 0 ? firstBatch : from + kBatch;
@@ -455,6 +505,9 @@ Status Renderer::setScene(const Scene& scene) {
   if (impl_->pointShadows) impl_->pointShadows->invalidate();
   impl_->sceneLights = scene.lights;
   impl_->setLights();
+  impl_->probeBox = scene.probeBox;
+  impl_->probeCounts = scene.probeCounts;
+  PN_TRY(impl_->layoutProbes());
   impl_->controller.invalidate();
   return {};
 }
@@ -473,6 +526,7 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
                    : ibl::SkyDistribution();
   impl_->setLights();
   impl_->updateDarkness();
+  if (impl_->probes) impl_->probes->clear();
   impl_->controller.invalidate();
   return {};
 }
@@ -528,6 +582,16 @@ int Renderer::totalFrames() const {
 }
 const FrameStats& Renderer::lastFrame() const {
   return impl_->stats;
+}
+ProbeVolumeInfo Renderer::probeVolumeInfo() const {
+  ProbeVolumeInfo info;
+  if (!impl_->probesOn()) return info;
+  const auto& g = impl_->probes->grid();
+  info.probes = g.count();
+  for (int a = 0; a < 3; ++a) info.counts[a] = g.counts[a];
+  info.bytes = impl_->probes->memoryBytes();
+  info.meanCaptures = impl_->probes->meanCaptures();
+  return info;
 }
 const RenderSettings& Renderer::settings() const {
   return impl_->settings;

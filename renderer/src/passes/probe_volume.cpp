@@ -1,0 +1,314 @@
+#include "passes/probe_volume.h"
+
+#include <algorithm>
+#include <array>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "passes/limits.h"
+#include "progressive/sequences.h"
+
+namespace penumbra::passes {
+namespace {
+
+constexpr int kC = kProbeCaptureSize;
+constexpr int kSlotsPerRow = 8;  // probe captures side by side in the capture target
+constexpr int kLightMapSize = 512;
+// Cube faces: forward and up of each 90-degree view; right = forward x up (glm::lookAt's).
+const std::array<glm::vec3, 6> kForward = {glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0),
+                                           glm::vec3(0, 1, 0),  glm::vec3(0, -1, 0),
+                                           glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+const std::array<glm::vec3, 6> kUp = {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1),
+                                      glm::vec3(0, 0, -1), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)};
+
+Result<gl::Texture2D> atlas(int w, int h) {
+  return gl::Texture2D::create({.width = w,
+                                .height = h,
+                                .format = gl::PixelFormat::RGBA16F,
+                                .sampler = {.minFilter = gl::Filter::Linear,
+                                            .magFilter = gl::Filter::Linear}});
+}
+
+}  // namespace
+
+Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
+  ProbeVolume v;
+  auto irr = library.program("fullscreen.vert", "probe_project.frag",
+                             {{"PN_FAR_PLANE", "0"}, {"PN_PROBE_DEPTH", "0"}});
+  if (!irr) return irr.error();
+  v.project_ = *irr;
+  auto depth = library.program("fullscreen.vert", "probe_project.frag",
+                               {{"PN_FAR_PLANE", "0"}, {"PN_PROBE_DEPTH", "1"}});
+  if (!depth) return depth.error();
+  v.projectDepth_ = *depth;
+  v.quad_ = gl::VertexArray::create();
+  for (int i = 0; i < kMaxCaptureLights / kMaxShadowMaps; ++i) {
+    auto sp = ShadowPass::create(library, kLightMapSize);
+    if (!sp) return sp.error();
+    v.lightMaps_.push_back(std::move(*sp));
+  }
+  return v;
+}
+
+Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
+  grid_ = grid;
+  irradiance_ = {};
+  depth_ = {};
+  if (grid_.empty()) return {};
+  const int cols = grid_.columns(), rows = grid_.rows();
+  auto irr = atlas(cols * (kProbeIrradianceTexels + 2), rows * (kProbeIrradianceTexels + 2));
+  if (!irr) return makeError("probe volume: " + irr.message());
+  irradiance_ = std::move(*irr);
+  auto depth = atlas(cols * (kProbeDepthTexels + 2), rows * (kProbeDepthTexels + 2));
+  if (!depth) return makeError("probe volume: " + depth.message());
+  depth_ = std::move(*depth);
+  irradianceFb_ = gl::Framebuffer::create();
+  irradianceFb_.attachColor(0, irradiance_);
+  irradianceFb_.setDrawBuffers(1);
+  PN_TRY(irradianceFb_.checkComplete());
+  depthFb_ = gl::Framebuffer::create();
+  depthFb_.attachColor(0, depth_);
+  depthFb_.setDrawBuffers(1);
+  PN_TRY(depthFb_.checkComplete());
+  clear();
+  return {};
+}
+
+void ProbeVolume::clear() {
+  captures_ = 0;
+  lightMapsValid_ = false;
+  probeCaptures_.assign(static_cast<size_t>(grid_.count()), 0);
+  if (grid_.empty()) return;
+  gl::apply({.depthTest = gl::DepthTest::Off, .depthWrite = false});
+  for (gl::Framebuffer* fb : {&irradianceFb_, &depthFb_}) {
+    fb->bind();
+    gl::clearBufferFloat(0, 0, 0, 0, 0);
+  }
+}
+
+double ProbeVolume::meanCaptures() const {
+  if (probeCaptures_.empty()) return 0.0;
+  double sum = 0;
+  for (int c : probeCaptures_) sum += c;
+  return sum / static_cast<double>(probeCaptures_.size());
+}
+
+glm::vec2 ProbeVolume::lightPoint() const {
+  if (captures_ == 0) return glm::vec2(0.5f);
+  return progressive::r2(static_cast<uint32_t>(captures_));
+}
+
+void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
+  const bool on = enabled && active();
+  p.set("uProbeEnabled", on ? 1 : 0);
+  p.set("uProbeIrradiance", kUnitProbeIrradiance);
+  p.set("uProbeDepth", kUnitProbeDepth);
+  if (!on) return;
+  irradiance_.bind(kUnitProbeIrradiance);
+  depth_.bind(kUnitProbeDepth);
+  p.set("uProbeOrigin", grid_.origin);
+  p.set("uProbeSpacing", grid_.spacing);
+  p.set("uProbeCounts", glm::vec3(grid_.counts));
+  p.set("uProbeDiagonal", grid_.diagonal);
+  p.set("uProbeColumns", grid_.columns());
+}
+
+Status ProbeVolume::ensureCaptureTarget(int probes) {
+  if (probes <= captureSlots_) return {};
+  const int w = 6 * kC * std::min(probes, kSlotsPerRow);
+  const int h = kC * ((probes + kSlotsPerRow - 1) / kSlotsPerRow);
+  auto tex = atlas(w, h);
+  if (!tex) return makeError("probe capture target: " + tex.message());
+  auto rb = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
+  if (!rb) return makeError("probe capture target: " + rb.message());
+  capture_ = std::move(*tex);
+  captureDepth_ = std::move(*rb);
+  captureFb_ = gl::Framebuffer::create();
+  captureFb_.attachColor(0, capture_);
+  captureFb_.attachDepth(captureDepth_);
+  captureFb_.setDrawBuffers(1);
+  PN_TRY(captureFb_.checkComplete());
+  captureSlots_ = probes;
+  return {};
+}
+
+// One shadow map per shadowed light (area lights first, then spot and directional ones, so a
+// batch's area samples take its lower slots as LightingPass expects): all of them at the first
+// capture, then one per capture from the capture's point on the light, round robin.
+Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
+  if (!lightMapsValid_) {
+    lightIndex_.clear();
+    for (const bool area : {true, false}) {
+      for (size_t i = 0; i < in.lights.size(); ++i) {
+        const Light& l = *in.lights[i].light;
+        if (l.type == LightType::Point || l.isArea() != area) continue;
+        if (static_cast<int>(lightIndex_.size()) < kMaxCaptureLights) {
+          lightIndex_.push_back(static_cast<int>(i));
+        }
+      }
+    }
+    lightViews_.assign(lightIndex_.size(), ShadowView{});
+    lightDirection_.assign(lightIndex_.size(), glm::vec3(0.0f));
+  }
+  const int n = static_cast<int>(lightIndex_.size());
+  const int stream = 64;  // coverage stream apart from the frame's maps
+  for (int j = 0; j < n; ++j) {
+    if (lightMapsValid_ && static_cast<uint64_t>(j) != captures_ % static_cast<uint64_t>(n)) {
+      continue;
+    }
+    const CaptureLight& cl = in.lights[static_cast<size_t>(lightIndex_[static_cast<size_t>(j)])];
+    const Light& l = *cl.light;
+    ShadowPass& pass = lightMaps_[static_cast<size_t>(j / kMaxShadowMaps)];
+    const int slot = j % kMaxShadowMaps;
+    const int coverage = static_cast<int>(captures_ % 65536);
+    if (l.isArea()) {
+      lightViews_[static_cast<size_t>(j)] =
+          pass.render(slot, *in.scene, cl.origin, l.direction, l.up, coverage, stream + j);
+    } else if (l.type == LightType::Directional) {
+      lightViews_[static_cast<size_t>(j)] = pass.render(
+          slot, *in.scene, fitDirectionalShadowView(cl.direction, in.scene->bounds(), pass.size()),
+          coverage, stream + j);
+    } else {
+      lightViews_[static_cast<size_t>(j)] =
+          pass.render(slot, *in.scene, l.position, l.direction, l.up, coverage, stream + j);
+    }
+    lightDirection_[static_cast<size_t>(j)] = cl.direction;
+  }
+  lightMapsValid_ = true;
+  return {};
+}
+
+Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in, int count) {
+  if (!active() || !in.scene || count <= 0) return {};
+  const std::vector<int> probes = progressive::probesForCapture(grid_, captures_, count);
+  PN_TRY(ensureCaptureTarget(static_cast<int>(probes.size())));
+  PN_TRY(renderLightMaps(in));
+
+  // The lights in batches of one shadow pass each; point lights (their cube maps) and
+  // unshadowable extras in the first.
+  const int shadowed = static_cast<int>(lightIndex_.size());
+  const int batches = std::max(1, (shadowed + kMaxShadowMaps - 1) / kMaxShadowMaps);
+  std::vector<LightingBatch> list(static_cast<size_t>(batches));
+  std::vector<CameraMatrices> cams;
+  for (int b = 0; b < batches; ++b) {
+    LightingBatch& batch = list[static_cast<size_t>(b)];
+    batch.targets = in.targets;
+    batch.scene = in.scene;
+    batch.environment = in.environment;
+    batch.shadows = &lightMaps_[static_cast<size_t>(b)];
+    batch.pointShadows = in.pointShadows;
+    batch.settings = in.settings;
+    batch.first = b == 0;
+    batch.occlusion = false;
+    batch.coverageFrame = static_cast<int>(captures_ % 65536);
+    batch.probes = this;
+  }
+  for (int j = 0; j < shadowed; ++j) {
+    const auto li = static_cast<size_t>(lightIndex_[static_cast<size_t>(j)]);
+    const Light& l = *in.lights[li].light;
+    LightingBatch& batch = list[static_cast<size_t>(j / kMaxShadowMaps)];
+    if (l.isArea()) {
+      batch.area.push_back({.light = &l,
+                            .lightIndex = static_cast<int>(li),
+                            .weight = 1.0f,
+                            .shadowed = true,
+                            .view = lightViews_[static_cast<size_t>(j)]});
+    } else {
+      PunctualDraw pd{&l, 1.0f, lightDirection_[static_cast<size_t>(j)]};
+      pd.shadowSlot = j % kMaxShadowMaps;
+      pd.view = lightViews_[static_cast<size_t>(j)];
+      batch.punctual.push_back(pd);
+    }
+  }
+  int pointMaps = 0;
+  for (const CaptureLight& cl : in.lights) {
+    if (cl.light->type != LightType::Point) continue;
+    PunctualDraw pd{cl.light, 1.0f, cl.light->direction};
+    if (pointMaps < kMaxPointShadows && in.pointShadows) {
+      auto view = in.pointShadows->ensure(pointMaps, *in.scene, cl.light->position);
+      if (!view) return view.error();
+      pd.pointShadow = pointMaps++;
+      pd.pointView = *view;
+    }
+    if (static_cast<int>(list[0].punctual.size()) < kMaxPunctualLights) {
+      list[0].punctual.push_back(pd);
+    }
+  }
+
+  // Six 90-degree views per probe.
+  const float diag = grid_.diagonal;
+  const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * diag, 4.0f * diag);
+  std::vector<CaptureView> views;
+  for (size_t s = 0; s < probes.size(); ++s) {
+    const glm::vec3 p = grid_.position(probes[s]);
+    const int x0 = static_cast<int>(s % kSlotsPerRow) * 6 * kC;
+    const int y0 = static_cast<int>(s / kSlotsPerRow) * kC;
+    for (int f = 0; f < 6; ++f) {
+      CaptureView v;
+      v.camera.view = glm::lookAt(p, p + kForward[static_cast<size_t>(f)],
+                                  kUp[static_cast<size_t>(f)]);
+      v.camera.projection = proj;
+      v.camera.position = p;
+      v.camera.viewOrigin = glm::vec4(p, 1.0f);
+      v.x = x0 + f * kC;
+      v.y = y0;
+      v.size = kC;
+      views.push_back(v);
+    }
+  }
+  captureFb_.bind();
+  gl::apply({});
+  gl::setViewport(0, 0, capture_.width(), capture_.height());
+  gl::clearBufferFloat(0, 0, 0, 0, 0);
+  gl::clearDepth(1.0f);
+  // LightingPass reads the camera for its default uniforms; each view sets its own.
+  for (LightingBatch& batch : list) {
+    batch.camera = &views.front().camera;
+    PN_TRY(lighting.drawCapture(batch, views, 4.0f));
+  }
+
+  // Project each probe onto its tiles, blended into the running means.
+  std::vector<glm::vec3> right(6);
+  for (size_t f = 0; f < 6; ++f) right[f] = glm::cross(kForward[f], kUp[f]);
+  for (const bool depth : {false, true}) {
+    const gl::Program& p = depth ? *projectDepth_ : *project_;
+    const int tile = (depth ? kProbeDepthTexels : kProbeIrradianceTexels) + 2;
+    (depth ? depthFb_ : irradianceFb_).bind();
+    p.use();
+    capture_.bind(0);
+    p.set("uCapture", 0);
+    p.set("uFaceForward", std::span<const glm::vec3>(kForward));
+    p.set("uFaceRight", std::span<const glm::vec3>(right));
+    p.set("uFaceUp", std::span<const glm::vec3>(kUp));
+    for (size_t s = 0; s < probes.size(); ++s) {
+      const int probe = probes[s];
+      const int n = probeCaptures_[static_cast<size_t>(probe)] + 1;
+      gl::apply({.depthTest = gl::DepthTest::Off,
+                 .depthWrite = false,
+                 .blend = gl::Blend::ConstantMix,
+                 .cull = gl::Cull::None,
+                 .blendWeight = 1.0f / static_cast<float>(std::min(n, kHistory))});
+      const int tx = (probe % grid_.columns()) * tile, ty = (probe / grid_.columns()) * tile;
+      gl::setViewport(tx, ty, tile, tile);
+      p.set("uTileOrigin", glm::vec2(tx, ty));
+      p.set("uCaptureOrigin", glm::vec2(static_cast<float>((s % kSlotsPerRow) * 6 * kC),
+                                        static_cast<float>((s / kSlotsPerRow) * kC)));
+      quad_.draw(gl::Primitive::Triangles, 3);
+    }
+  }
+  for (int probe : probes) ++probeCaptures_[static_cast<size_t>(probe)];
+  ++captures_;
+  return {};
+}
+
+int64_t ProbeVolume::memoryBytes() const {
+  int64_t bytes = 0;
+  if (irradiance_) bytes += int64_t{8} * irradiance_.width() * irradiance_.height();
+  if (depth_) bytes += int64_t{8} * depth_.width() * depth_.height();
+  if (capture_) bytes += int64_t{12} * capture_.width() * capture_.height();
+  bytes += static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize *
+           kLightMapSize;
+  return bytes;
+}
+
+}  // namespace penumbra::passes

@@ -1,0 +1,99 @@
+// ProbeVolume: world-space, multi-bounce indirect light that fills frame by frame (issue 14).
+// Irradiance probes on a progressive::ProbeGrid over the scene; each capture renders a few
+// probes' cube maps (PN_CAPTURE lighting: every light at full weight, shadowed by maps the
+// volume keeps one per light and re-renders from a new point on the light one per capture, the
+// environment where the probe sees sky, and what the volume already holds on every surface, so
+// repeated captures add bounces), and projects them onto octahedral tiles of two atlases:
+// irradiance, and the mean and mean square distance for Chebyshev visibility. Each tile keeps a
+// running mean of its captures (constant-alpha blending in place, the weight 1/n capped so the
+// newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "passes/lighting_pass.h"
+#include "passes/point_shadow_pass.h"
+#include "passes/shadow_pass.h"
+#include "progressive/probe_grid.h"
+
+namespace penumbra::passes {
+
+// A light as a capture shades it: at full weight, its map rendered from `origin` (area lights:
+// a point on the surface) or along `direction` (spot: its own; directional: jittered over its
+// angular size), both for ProbeVolume::lightPoint().
+struct CaptureLight {
+  const Light* light = nullptr;
+  glm::vec3 origin{0.0f};
+  glm::vec3 direction{0.0f};
+};
+
+// What a capture shades with: the scene's lights (and the environment's sun), the point-light
+// cube maps the frame uses, the settings and the targets (for LightingPass's bindings).
+struct ProbeCaptureInputs {
+  const GpuScene* scene = nullptr;
+  const GpuEnvironment* environment = nullptr;
+  std::vector<CaptureLight> lights;
+  PointShadowPass* pointShadows = nullptr;
+  const RenderSettings* settings = nullptr;
+  RenderTargets* targets = nullptr;
+};
+
+class ProbeVolume {
+ public:
+  // Shadowed lights a capture can shade (area, spot, directional; point lights use the frame's
+  // cube maps): two shadow passes of kMaxShadowMaps maps.
+  static constexpr int kMaxCaptureLights = 2 * kMaxShadowMaps;
+  // Captures averaged at most: later ones weigh 1/kHistory, so new bounces still arrive.
+  static constexpr int kHistory = 16;
+
+  static Result<ProbeVolume> create(gl::ShaderLibrary& library);
+  // Lays out a grid and empties the volume (an empty grid turns it off).
+  Status reset(const progressive::ProbeGrid& grid);
+  // Empties the volume, same grid (the lights or the environment changed).
+  void clear();
+  bool active() const { return !grid_.empty(); }
+  const progressive::ProbeGrid& grid() const { return grid_; }
+  uint64_t captures() const { return captures_; }
+  // The point on each light (in [0, 1]^2) the next capture's re-rendered map uses: the centre
+  // first, then the R2 sequence.
+  glm::vec2 lightPoint() const;
+  // Mean captures per probe so far.
+  double meanCaptures() const;
+  // Sets the probe uniforms and binds the atlases on a program in use; `enabled` false (or an
+  // inactive volume) sets uProbeEnabled 0.
+  void bind(const gl::Program& program, bool enabled) const;
+  // Captures the next `count` probes of the grid's order and blends them into the atlases.
+  Status capture(LightingPass& lighting, const ProbeCaptureInputs& in, int count);
+  // Bytes of GPU memory the volume holds (atlases, capture target, shadow maps).
+  int64_t memoryBytes() const;
+
+ private:
+  Status ensureCaptureTarget(int probes);
+  Status renderLightMaps(const ProbeCaptureInputs& in);
+
+  progressive::ProbeGrid grid_;
+  gl::Program* project_ = nullptr;       // irradiance
+  gl::Program* projectDepth_ = nullptr;  // depth moments
+  gl::VertexArray quad_;
+  gl::Texture2D irradiance_, depth_;
+  gl::Framebuffer irradianceFb_, depthFb_;
+  gl::Texture2D capture_;
+  gl::Renderbuffer captureDepth_;
+  gl::Framebuffer captureFb_;
+  int captureSlots_ = 0;
+  std::vector<ShadowPass> lightMaps_;
+  // Per shadowed light: its map's view (after the first capture), and how many it had.
+  std::vector<ShadowView> lightViews_;
+  std::vector<int> lightIndex_;         // into the light list, per shadowed slot
+  std::vector<glm::vec3> lightDirection_;  // of the direction-jittered ones' maps
+  bool lightMapsValid_ = false;
+  std::vector<int> probeCaptures_;
+  uint64_t captures_ = 0;
+};
+
+}  // namespace penumbra::passes

@@ -1,0 +1,77 @@
+#include "progressive/probe_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace penumbra::progressive {
+
+glm::ivec3 ProbeGrid::cell(int index) const {
+  return {index % counts.x, (index / counts.x) % counts.y, index / (counts.x * counts.y)};
+}
+
+glm::vec3 ProbeGrid::position(int index) const {
+  return origin + glm::vec3(cell(index)) * spacing;
+}
+
+int ProbeGrid::columns() const {
+  return empty() ? 0 : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count()))));
+}
+
+int ProbeGrid::rows() const {
+  const int c = columns();
+  return c == 0 ? 0 : (count() + c - 1) / c;
+}
+
+ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
+  ProbeGrid g;
+  if (!box.valid() || !std::isfinite(box.min.x + box.min.y + box.min.z + box.max.x + box.max.y +
+                                     box.max.z)) {
+    return g;
+  }
+  const glm::vec3 extent = box.max - box.min;
+  const float longest = std::max(extent.x, std::max(extent.y, extent.z));
+  if (!(longest > 0.0f)) return g;
+  const float cellSize = longest / std::max(density, 1.0f);
+  for (int a = 0; a < 3; ++a) {
+    int n = counts[a] > 0 ? counts[a]
+                          : static_cast<int>(std::lround(extent[a] / cellSize));
+    n = std::clamp(n, 1, 64);
+    g.counts[a] = n;
+    // A flat axis (a ground plane alone) keeps the cell size, so biases stay finite.
+    g.spacing[a] = extent[a] > 1e-6f * longest ? extent[a] / static_cast<float>(n) : cellSize;
+    g.origin[a] = extent[a] > 1e-6f * longest ? box.min[a] + 0.5f * g.spacing[a]
+                                              : box.min[a];
+  }
+  // Halve the densest axes until the atlas fits.
+  while (g.count() > kMaxProbes) {
+    int a = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (g.counts[k] > g.counts[a]) a = k;
+    }
+    const float size = g.spacing[a] * static_cast<float>(g.counts[a]);
+    g.counts[a] = std::max(1, g.counts[a] / 2);
+    g.spacing[a] = size / static_cast<float>(g.counts[a]);
+    g.origin[a] = box.min[a] + 0.5f * g.spacing[a];
+  }
+  g.diagonal = std::max(glm::length(extent), 1e-30f);
+  return g;
+}
+
+std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int perCapture) {
+  std::vector<int> out;
+  const int n = grid.count();
+  if (n == 0 || perCapture <= 0) return out;
+  // A stride near n / golden ratio, made coprime with n: a permutation of 0..n-1.
+  auto stride = static_cast<uint64_t>(std::max(1.0, std::round(n * 0.6180339887)));
+  while (std::gcd(stride, static_cast<uint64_t>(n)) != 1) ++stride;
+  const int k = std::min(perCapture, n);
+  for (int j = 0; j < k; ++j) {
+    const uint64_t slot = (capture * static_cast<uint64_t>(k) + static_cast<uint64_t>(j)) %
+                          static_cast<uint64_t>(n);
+    out.push_back(static_cast<int>((slot * stride) % static_cast<uint64_t>(n)));
+  }
+  return out;
+}
+
+}  // namespace penumbra::progressive
