@@ -76,7 +76,7 @@ if (server) closeServer(server);
 // Keep the rows of scenes not run this time (handoff.json), in the default order.
 let previous = [];
 try { previous = JSON.parse(readFileSync(join(OUT, 'handoff.json'), 'utf8')); } catch {}
-const ORDER = ['cornell_box', 'material_grid', 'kitchen', 'glass', 'product', 'dense'];
+const ORDER = ['cornell_box', 'material_grid', 'kitchen', 'glass', 'product', 'dense', 'room_cm'];
 for (const r of previous) if (!results.some((x) => x.scene === r.scene)) results.push(r);
 results.sort((a, b) => ORDER.indexOf(a.scene) - ORDER.indexOf(b.scene));
 

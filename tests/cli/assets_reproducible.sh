@@ -24,6 +24,7 @@ generator_for() {
     product/*) echo "gen_product.py" ;;
     dense/*) echo "gen_dense.py" ;;
     glass/*) echo "gen_glass.py" ;;
+    room_cm/*) echo "gen_room_cm.py" ;;
     *) echo "" ;;
   esac
 }

@@ -78,6 +78,33 @@ void finishScene(Scene& scene) {
   }
 }
 
+void scaleScene(Scene& scene, float k) {
+  const auto scaleBounds = [k](Bounds& b) {
+    if (b.valid()) b = {b.min * k, b.max * k};
+  };
+  for (Mesh& m : scene.meshes) {
+    for (Primitive& p : m.primitives) {
+      for (glm::vec3& v : p.positions) v *= k;
+      scaleBounds(p.bounds);
+    }
+  }
+  for (Instance& inst : scene.instances)
+    inst.world[3] = glm::vec4(glm::vec3(inst.world[3]) * k, 1.0f);
+  for (Light& l : scene.lights) {
+    l.position *= k;
+    l.width *= k;
+    l.height *= k;
+    l.range *= k;
+  }
+  for (Camera& c : scene.cameras) {
+    c.world[3] = glm::vec4(glm::vec3(c.world[3]) * k, 1.0f);
+    c.znear *= k;
+    c.zfar *= k;
+    c.ymag *= k;
+  }
+  scaleBounds(scene.bounds);
+}
+
 Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, const Camera& camera,
                              RenderSettings settings, const RendererOptions& options) {
   auto r = Renderer::create(options);

@@ -20,6 +20,14 @@ Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDeg);
 // Fills bounds and instances (identity transforms) of a scene built from meshes.
 void finishScene(Scene& scene);
 
+// Scales a scene in place by k about the origin, as if it had been modelled in other units:
+// vertex positions and bounds, instance translations, light positions, sizes and ranges,
+// camera positions and clip planes (ymag of orthographic ones). Light intensities stay:
+// an area light's luminance (radiance) does not depend on its size. Punctual lights (candela,
+// whose irradiance falls with 1/d^2) are left as they are, so only area-lit scenes keep
+// their image.
+void scaleScene(Scene& scene, float k);
+
 // Renders `frames` frames and returns the linear radiance.
 Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, const Camera& camera,
                              RenderSettings settings, const RendererOptions& options = {});

@@ -19,6 +19,12 @@ What it does, so that Blender sees what Penumbra sees:
     strength = intensity, rotation about +Y (glTF) = about +Z (Blender); or a uniform colour;
   * materials: glTF's BRDF rebuilt from Blender nodes (gltf_brdf.py; --material principled
     keeps the importer's Principled BSDF);
+  * scale: Blender reads glTF units as metres, so a scene modelled in centimetres
+    (assets/room_cm) is 100 times bigger there. Camera, light placement and sizes come from the
+    file's numbers unchanged and P = 4 L A takes the area in those units, so the radiance L and
+    the image are the same at any scale (checked with Cycles: room_cm and a copy in metres give
+    the same image). Eevee's GTAO distance follows the scene's diagonal as Penumbra's occlusion
+    distance does; its SSR thickness and light shadow clip start stay Blender's defaults;
   * Standard view transform, no denoising, box pixel filter 1 px (Penumbra's jittered running
     mean), linear 32-bit EXR, render time written to OUT.json.
 """
@@ -195,7 +201,9 @@ def main():
         persp = gcam["perspective"]
         cdata.angle_y = persp["yfov"]
         cdata.clip_start = persp.get("znear", 0.01)
-        cdata.clip_end = persp.get("zfar", 1000.0)
+        # No zfar: Penumbra's far plane is at infinity; Blender needs one, beyond the scene at
+        # any scale (a room modelled in centimetres is hundreds of Blender metres across).
+        cdata.clip_end = persp.get("zfar", max(1000.0, 100.0 * scene_diagonal()))
     cobj = bpy.data.objects.new("penumbra_camera", cdata)
     scene.collection.objects.link(cobj)
     cobj.matrix_world = to_blender(worlds[cam_node])

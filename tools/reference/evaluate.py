@@ -22,6 +22,7 @@ SCENES = {
     "product": "assets/product/product.json",
     "dense": "assets/dense/dense.json",
     "glass": "assets/glass/glass.json",
+    "room_cm": "assets/room_cm/room_cm.json",  # modelled in centimetres (issue #14)
 }
 SIZE = "1280x720"
 CYCLES_SAMPLES = 128  # the reference (seed 2)

@@ -51,8 +51,9 @@ Result<PointShadowView> PointShadowPass::ensure(int index, const GpuScene& scene
     maps_[k] = std::move(*cube);
   }
   const Bounds& b = scene.bounds();
-  const float radius = b.valid() ? std::max(b.radius(), 1e-3f) : 1.0f;
-  float farDist = 1e-3f;
+  const float radius = shadowSceneRadius(b);
+  const float nearDist = shadowNearDistance(radius);
+  float farDist = nearDist;
   if (b.valid()) {
     for (int c = 0; c < 8; ++c) {
       const glm::vec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
@@ -60,7 +61,6 @@ Result<PointShadowView> PointShadowPass::ensure(int index, const GpuScene& scene
       farDist = std::max(farDist, glm::length(corner - position));
     }
   }
-  const float nearDist = std::max(1e-3f * radius, 1e-4f);
   farDist = farDist * 1.01f + nearDist;
   const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, nearDist, farDist);
   // The GL cube-map faces: the direction each looks along and its up vector.

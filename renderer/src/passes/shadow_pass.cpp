@@ -27,6 +27,11 @@ ShadowView shadowView(const glm::mat4& proj, const glm::mat4& view, float sceneR
 
 }  // namespace
 
+float shadowSceneRadius(const Bounds& bounds) {
+  const float r = bounds.valid() ? bounds.radius() : 0.0f;
+  return r > 0.0f && std::isfinite(r) ? r : 1.0f;
+}
+
 ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
                          const glm::vec3& upHint, const Bounds& bounds, int mapSize) {
   glm::vec3 up = upHint;
@@ -34,9 +39,10 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
     up = std::abs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
   }
   const glm::mat4 view = glm::lookAt(origin, origin + direction, up);
-  const float radius = bounds.valid() ? std::max(bounds.radius(), 1e-3f) : 1.0f;
+  const float radius = shadowSceneRadius(bounds);
+  const float nearDist = shadowNearDistance(radius);
   const float maxTan = std::tan(glm::radians(75.0f));
-  float tanHalf = 0.05f, farDist = 1e-3f;
+  float tanHalf = 0.05f, farDist = nearDist;
   if (bounds.valid()) {
     for (int c = 0; c < 8; ++c) {
       glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
@@ -44,18 +50,17 @@ ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
       glm::vec3 v = glm::vec3(view * glm::vec4(corner, 1.0f));
       farDist = std::max(farDist, glm::length(v));
       const float depth = -v.z;
-      if (depth <= 1e-6f) {
+      if (depth <= 1e-6f * radius) {
         tanHalf = maxTan;  // a corner beside or behind the emitting plane: widest frustum
       } else {
         tanHalf = std::max(tanHalf, std::max(std::abs(v.x), std::abs(v.y)) / depth);
       }
     }
   } else {
-    farDist = 10.0f;
+    farDist = 10.0f * radius;
     tanHalf = maxTan;
   }
   tanHalf = std::min(tanHalf * 1.02f, maxTan);
-  const float nearDist = std::max(1e-3f * radius, 1e-4f);
   farDist = farDist * 1.01f + nearDist;
   const glm::mat4 proj = glm::perspective(2.0f * std::atan(tanHalf), 1.0f, nearDist, farDist);
   // The texel's size grows with distance: its angle is the offset per unit of w.
@@ -99,7 +104,7 @@ Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
 ShadowView fitDirectionalShadowView(const glm::vec3& direction, const Bounds& bounds, int mapSize) {
   const glm::vec3 d = glm::normalize(direction);
   const glm::vec3 center = bounds.valid() ? bounds.center() : glm::vec3(0.0f);
-  const float radius = bounds.valid() ? std::max(bounds.radius(), 1e-3f) : 1.0f;
+  const float radius = shadowSceneRadius(bounds);
   const glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
   const glm::vec3 eye = center - d * (2.0f * radius);
   const glm::mat4 view = glm::lookAt(eye, center, up);

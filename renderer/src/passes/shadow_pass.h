@@ -22,6 +22,15 @@ struct ShadowView {
   glm::vec4 params{0.0f};  // see chunks/shadows.glsl
 };
 
+// The scene's bounding radius, the length every shadow frustum, near plane and bias is a
+// fraction of (no floor in scene units, so a scene modelled in millimetres or kilometres
+// gets the same maps); 1 when there are no bounds or they are a single point.
+float shadowSceneRadius(const Bounds& sceneBounds);
+// The near plane of a perspective shadow map (area-light samples, point-light cube faces).
+inline float shadowNearDistance(float sceneRadius) {
+  return 1e-3f * sceneRadius;
+}
+
 // The light-space frustum for a sample at `origin` emitting along `direction`.
 ShadowView fitShadowView(const glm::vec3& origin, const glm::vec3& direction,
                          const glm::vec3& upHint, const Bounds& sceneBounds, int mapSize);
