@@ -51,6 +51,7 @@ void main() {
         if (c <= 0.0) continue;
         float w = pow(c, 64.0) / (len2 * sqrt(len2));
         float r = abs(texelFetch(uCapture, ivec2(x0 + face * C + x, y0 + y), 0).a);
+        if (!(r < 1e30)) continue;  // non-finite: a bad light must not poison the volume
         moments += w * vec2(r, r * r);
         weight += w;
       }
@@ -73,6 +74,9 @@ void main() {
         float len2 = dot(d, d);
         float dw = (4.0 / float(H * H)) / (len2 * sqrt(len2));
         vec4 L = textureLod(uCapture, (vec2(float(x0 + face * C), float(y0)) + vec2(x, y) * 2.0 + 1.0) / size, 0.0);
+        // Non-finite radiance (a light with a NaN intensity) is skipped, as the accumulation
+        // drops such samples.
+        if (!all(lessThan(abs(L.rgb), vec3(1e30)))) continue;
         e += L.rgb * (max(dot(n, d), 0.0) * inversesqrt(len2) * dw);
         backfaces += L.a < 0.0 ? dw : 0.0;
       }

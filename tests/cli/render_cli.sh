@@ -75,7 +75,8 @@ cmp -s "$WORK/cb.png" "$WORK/keep.png" || fail "a failed run changed an existing
 help=$("$TOOL" --help)
 for flag in --exposure --tonemap --env-intensity --env-rotation --no-background --background-blur \
     --frames --fd --occlusion-distance --light-samples --shadow-size --no-ssgi --indirect-clamp \
-    --sky-shadows --seed --env --camera --size --memory-budget; do
+    --sky-shadows --no-gi --probe-density --probes-per-frame --seed --env --camera --size \
+    --memory-budget; do
   grep -q -- "$flag" <<<"$help" || fail "--help lacks $flag"
 done
 expect_fail "bad environment" "expected none, studio" "$CORNELL" -o "$WORK/a.png" --env 1,2
@@ -86,11 +87,15 @@ for env in none studio 0.2,0.3,0.4; do
   [ "$env" = 0.2,0.3,0.4 ] && label="uniform(0.2, 0.3, 0.4)"
   grep -qF "environment: $label" <<<"$out" || fail "--env $env: the log does not say 'environment: $label'"
 done
-# --sky-shadows is a switch (no value) that turns them on: the image changes.
+# --sky-shadows is a switch (no value) that turns them on: the image changes (without the probe
+# volume, whose light already carries the sky's visibility). --no-gi changes it too.
 GLASS="$ROOT/assets/glass/glass.json"
-"$TOOL" "$GLASS" -o "$WORK/nosky.png" --size 32x18 --frames 6 --shadow-size 128 -q || fail "glass run"
-"$TOOL" "$GLASS" -o "$WORK/sky.png" --size 32x18 --frames 6 --shadow-size 128 -q --sky-shadows ||
-  fail "--sky-shadows run"
+"$TOOL" "$GLASS" -o "$WORK/gi.png" --size 32x18 --frames 6 --shadow-size 128 -q || fail "glass run"
+"$TOOL" "$GLASS" -o "$WORK/nosky.png" --size 32x18 --frames 6 --shadow-size 128 -q --no-gi ||
+  fail "--no-gi run"
+cmp -s "$WORK/gi.png" "$WORK/nosky.png" && fail "--no-gi changed nothing"
+"$TOOL" "$GLASS" -o "$WORK/sky.png" --size 32x18 --frames 6 --shadow-size 128 -q --no-gi \
+  --sky-shadows || fail "--sky-shadows run"
 cmp -s "$WORK/nosky.png" "$WORK/sky.png" && fail "--sky-shadows changed nothing"
 # A bare model with lights gets a black world, one without gets the studio.
 out=$("$TOOL" "$ROOT/assets/cornell_box/cornell_box.gltf" -o "$WORK/bare.png" --size 16x16 \

@@ -172,13 +172,16 @@ TEST_F(FrameSplitGLTest, AFrameInProgressShowsThePreviousMeanAndARestartDropsIt)
   auto f = r->step();
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(*f, 3);
-  // Its parts: one per shadow map, and 4 bands of each pass over the image.
+  // Its parts: one per shadow map, 4 bands of each pass over the image, and the probe capture.
   const FrameStats& st = r->lastFrame();
-  EXPECT_EQ(parts, st.shadowPasses + 4 * (st.prepass ? 2 : 1));
+  EXPECT_GT(st.probeCaptures, 0);
+  EXPECT_EQ(parts, st.shadowPasses + 4 * (st.prepass ? 2 : 1) + 1);
   auto whole = makeRenderer(j);
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(whole->step().ok());
   EXPECT_LE(maxDifference(*r->readRadiance(), *whole->readRadiance()), 1e-6f);
   // The next frame has 2 bands; a camera change part-way drops it and restarts at frame 1.
+  // The probe volume keeps the captures of frames 1 to 3 (a camera change keeps it) but not
+  // those of the dropped frame (its capture is its last part): as if frame 4 never began.
   p = r->stepPart();
   ASSERT_TRUE(p.ok());
   EXPECT_EQ(p->frame, 4);
@@ -189,6 +192,7 @@ TEST_F(FrameSplitGLTest, AFrameInProgressShowsThePreviousMeanAndARestartDropsIt)
   EXPECT_EQ(p->frame, 1);
   EXPECT_EQ(p->part, 1);
   while (!r->converged()) ASSERT_TRUE(r->stepPart().ok());
+  whole->setCamera(j.camera);
   while (!whole->converged()) ASSERT_TRUE(whole->step().ok());
   EXPECT_LE(maxDifference(*r->readRadiance(), *whole->readRadiance()), 1e-6f);
   auto done = r->stepPart();
@@ -205,8 +209,9 @@ TEST_F(FrameSplitGLTest, TileCountIsClampedToTheImageHeight) {
   EXPECT_EQ(r->frameTiles(), kMaxFrameTiles);
   auto p = r->stepPart();
   ASSERT_TRUE(p.ok());
-  // Frame 1 is environment only: lighting + accumulation, one band per row at most.
-  EXPECT_EQ(p->parts, 5);
+  // Frame 1 is environment only: lighting + accumulation, one band per row at most, and the
+  // young probe volume's first capture.
+  EXPECT_EQ(p->parts, 6);
   while (!p->done) p = r->stepPart();
   // Unsplit, one part is the whole frame.
   r->setFrameTiles(0);

@@ -105,7 +105,6 @@ double closedBoxMean(bool volume, double* expected) {
   meanRadiance(*r, {0, 0, 0}, axes[0]);
   double sum = 0.0;
   for (const glm::vec3& a : axes) {
-    r->restart();
     sum += meanRadiance(*r, {0, 0, 0}, a);
   }
   return sum / 6.0;
@@ -150,7 +149,6 @@ TEST_F(ProbeVolumeGLTest, ThinWallKeepsTheDarkRoomDark) {
   auto r = makeRenderer(s, smallSettings(true));
   ASSERT_TRUE(r);
   const double lit = meanRadiance(*r, {-0.05f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f});
-  r->restart();
   Image dark;
   const double leak = meanRadiance(*r, {0.95f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, &dark);
   std::printf("thin wall: lit room %.4f, dark room %.6f (%.3f %%)\n", lit, leak,

@@ -70,6 +70,7 @@ RenderSettings topDownSettings(int frames) {
   RenderSettings rs;
   rs.width = rs.height = 64;
   rs.progressive.frames = frames;
+  rs.progressive.probeVolume = false;  // the composites below are of direct light
   rs.progressive.occlusionDistance = 1e-4f;
   rs.progressive.screenSpaceIndirect = false;
   // Sky shadows have their own tests; their per-frame estimate would only add noise to the

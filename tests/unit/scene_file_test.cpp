@@ -188,3 +188,40 @@ TEST(SettingsTest, ToneMapperNamesRoundTrip) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(SceneFileTest, ProbeVolumeOverrideRoundTrips) {
+  auto sf = parseSceneJson(
+      R"({"gltf": "a.gltf", "probeVolume": {"min": [-1, 0, -2], "max": [1, 3, 2],
+          "counts": [4, 2, 8]}})",
+      "/d", "s.json");
+  ASSERT_TRUE(sf.ok()) << sf.message();
+  EXPECT_TRUE(sf->probeVolume.hasBox);
+  EXPECT_EQ(sf->probeVolume.min, glm::vec3(-1, 0, -2));
+  EXPECT_EQ(sf->probeVolume.max, glm::vec3(1, 3, 2));
+  EXPECT_EQ(sf->probeVolume.counts, glm::ivec3(4, 2, 8));
+  auto back = parseSceneJson(sceneFileJson(*sf), "/d", "s2.json");
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back->probeVolume.min, sf->probeVolume.min);
+  EXPECT_EQ(back->probeVolume.counts, sf->probeVolume.counts);
+  // Counts alone keep the automatic box.
+  auto counts = parseSceneJson(R"({"gltf": "a.gltf", "probeVolume": {"counts": [2, 2, 2]}})",
+                               "", "c.json");
+  ASSERT_TRUE(counts.ok());
+  EXPECT_FALSE(counts->probeVolume.hasBox);
+  for (const char* bad : {R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0]}})",
+                          R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0], "max": [1, 0, 1]}})",
+                          R"({"gltf": "a.gltf", "probeVolume": {"counts": [0, 1, 1]}})",
+                          R"({"gltf": "a.gltf", "probeVolume": {"counts": [1, 1]}})",
+                          R"({"gltf": "a.gltf", "probeVolume": 3})"}) {
+    auto e = parseSceneJson(bad, "", "bad.json");
+    ASSERT_FALSE(e.ok()) << bad;
+    EXPECT_NE(e.message().find("probeVolume"), std::string::npos) << e.message();
+    EXPECT_EQ(e.message().find('\n'), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -26,6 +26,13 @@ export interface Settings {
    * shadow-mapped shadow on the diffuse environment light (default false: without multi-bounce
    * indirect light it only darkens). */
   skyShadows?: boolean;
+  /** Probe volume: multi-bounce indirect light from irradiance probes over the scene, filled a
+   * few captures per frame; it survives camera moves (default true). */
+  probeVolume?: boolean;
+  /** Probes along the longest side of the scene's bounds (1..64; default 4). */
+  probeDensity?: number;
+  /** Probe captures per intermediate frame (1..64; default 2). */
+  probesPerFrame?: number;
   /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */
   indirectClamp?: number;
   /** Shadow-map samples per area light; 0 = automatic. */

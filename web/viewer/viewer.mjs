@@ -204,6 +204,7 @@ async function main() {
                       occlusionDistance: numberParam('occlusionDistance') };
   if (query.get('tonemap')) overrides.toneMapper = query.get('tonemap');
   if (query.get('ssgi')) overrides.screenSpaceIndirect = query.get('ssgi') !== '0';
+  if (query.get('gi')) overrides.probeVolume = query.get('gi') !== '0';
   for (const o of [options, overrides]) {
     for (const k of Object.keys(o)) if (o[k] === undefined) delete o[k];
   }

@@ -101,7 +101,9 @@ class Renderer {
   // at most the image height); a frame in progress keeps its own.
   void setFrameTiles(int tiles);
   int frameTiles() const;
-  // Restarts accumulation at frame 1 (the controller does this on any change).
+  // Restarts accumulation at frame 1 and empties the probe volume: frame n after restart() is
+  // frame n of a fresh renderer. Changes restart accumulation by themselves; a camera change
+  // keeps the probe volume, which does not depend on the view.
   void restart();
   bool converged() const;
   int framesDone() const;

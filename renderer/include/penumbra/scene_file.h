@@ -35,10 +35,19 @@ Result<EnvironmentSpec> parseEnvironmentSpec(std::string_view text,
 // The form parseEnvironmentSpec reads ("default" for Kind::Default).
 std::string environmentSpecText(const EnvironmentSpec& spec);
 
+// The probe volume's box and probe counts, when the scene file overrides them ("probeVolume":
+// {"min": [x, y, z], "max": [x, y, z], "counts": [nx, ny, nz]}, each part optional).
+struct ProbeVolumeSpec {
+  bool hasBox = false;
+  glm::vec3 min{0.0f}, max{0.0f};
+  glm::ivec3 counts{0};  // 0 on an axis: from the density setting
+};
+
 struct SceneFile {
   std::string gltfPath;  // resolved against the scene file's folder
   EnvironmentSpec environment;
   std::string camera;  // name or index; empty: the first camera, else a default one
+  ProbeVolumeSpec probeVolume;
   RenderSettings settings;
   std::vector<std::string> warnings;  // unknown keys and the like
 };

@@ -89,6 +89,11 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   auto scene = loadGltf(job.sceneFile.gltfPath, lo);
   if (!scene) return scene.error();
   job.scene = std::move(*scene);
+  if (job.sceneFile.probeVolume.hasBox) {
+    job.scene.probeBox.min = job.sceneFile.probeVolume.min;
+    job.scene.probeBox.max = job.sceneFile.probeVolume.max;
+  }
+  job.scene.probeCounts = job.sceneFile.probeVolume.counts;
   job.warnings.insert(job.warnings.end(), job.scene.warnings.begin(), job.scene.warnings.end());
   const auto punctual = std::count_if(job.scene.lights.begin(), job.scene.lights.end(),
                                       [](const Light& l) { return !l.isArea(); });

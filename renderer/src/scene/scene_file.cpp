@@ -172,7 +172,7 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   RenderSettings& s = sf.settings;
   std::set<std::string> topLevel = groupKeys("");
   topLevel.insert({"gltf", "environment", "camera", "resolution", "background", "progressive",
-                   "$schema", "comment"});
+                   "probeVolume", "$schema", "comment"});
   warnUnknown(doc, topLevel, "the scene file", sf.warnings);
   auto fail = [&](const Error& e) { return makeError(name + ": " + e.message); };
 
@@ -241,6 +241,39 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
       if (auto st = readSetting(v, info, s, "resolution"); !st) return fail(st.error());
     }
   }
+  if (auto it = doc.find("probeVolume"); it != doc.end()) {
+    if (!it->is_object()) return makeError(name + ": 'probeVolume' must be an object");
+    warnUnknown(*it, {"min", "max", "counts"}, "probeVolume", sf.warnings);
+    auto vec3 = [&](const char* key, glm::vec3& out) -> bool {
+      auto v = it->find(key);
+      if (v == it->end()) return false;
+      if (!v->is_array() || v->size() != 3) return false;
+      for (int a = 0; a < 3; ++a) {
+        if (!(*v)[a].is_number() || !std::isfinite((*v)[a].get<double>())) return false;
+        out[a] = (*v)[a].get<float>();
+      }
+      return true;
+    };
+    ProbeVolumeSpec& pv = sf.probeVolume;
+    const bool hasMin = it->contains("min"), hasMax = it->contains("max");
+    if (hasMin || hasMax) {
+      if (!vec3("min", pv.min) || !vec3("max", pv.max) || !(pv.min.x < pv.max.x) ||
+          !(pv.min.y < pv.max.y) || !(pv.min.z < pv.max.z)) {
+        return makeError(name + ": 'probeVolume' needs both 'min' and 'max' as [x, y, z], with "
+                                "min below max on every axis");
+      }
+      pv.hasBox = true;
+    }
+    if (auto c = it->find("counts"); c != it->end()) {
+      bool ok = c->is_array() && c->size() == 3;
+      for (int a = 0; ok && a < 3; ++a) {
+        ok = (*c)[a].is_number_integer() && (*c)[a].get<int64_t>() >= 1 &&
+             (*c)[a].get<int64_t>() <= 64;
+        if (ok) pv.counts[a] = (*c)[a].get<int>();
+      }
+      if (!ok) return makeError(name + ": 'probeVolume' 'counts' must be three integers in 1..64");
+    }
+  }
   if (auto st = readGroup(doc, "", s, "scene"); !st) return fail(st.error());
   for (const char* group : {"background", "progressive"}) {
     auto it = doc.find(group);
@@ -275,6 +308,16 @@ std::string sceneFileJson(const SceneFile& sf) {
       break;
   }
   if (!sf.camera.empty()) doc["camera"] = sf.camera;
+  const ProbeVolumeSpec& pv = sf.probeVolume;
+  if (pv.hasBox || pv.counts != glm::ivec3(0)) {
+    json p = json::object();
+    if (pv.hasBox) {
+      p["min"] = {pv.min.x, pv.min.y, pv.min.z};
+      p["max"] = {pv.max.x, pv.max.y, pv.max.z};
+    }
+    if (pv.counts != glm::ivec3(0)) p["counts"] = {pv.counts.x, pv.counts.y, pv.counts.z};
+    doc["probeVolume"] = p;
+  }
   doc["resolution"] = {sf.settings.width, sf.settings.height};
   json groups = {{"background", json::object()}, {"progressive", json::object()}};
   for (const SettingInfo& info : settingsSchema()) {

@@ -1,0 +1,67 @@
+// The probe grid's layout (progressive/probe_grid.h): follows the bounds, scales with them,
+// honours overrides, and its capture order visits every probe once per sweep.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "progressive/probe_grid.h"
+
+namespace penumbra::progressive {
+namespace {
+
+Bounds box(glm::vec3 lo, glm::vec3 hi) {
+  Bounds b;
+  b.extend(lo);
+  b.extend(hi);
+  return b;
+}
+
+TEST(ProbeGridTest, CellCentresOverTheBoundsWithTheDensityAlongTheLongestSide) {
+  const ProbeGrid g = placeProbes(box({0, 0, 0}, {8, 2, 4}), 4.0f);
+  EXPECT_EQ(g.counts, glm::ivec3(4, 1, 2));
+  EXPECT_EQ(g.count(), 8);
+  EXPECT_FLOAT_EQ(g.spacing.x, 2.0f);
+  EXPECT_FLOAT_EQ(g.origin.x, 1.0f);  // half a cell in: no probe on the bounding walls
+  EXPECT_FLOAT_EQ(g.position(g.count() - 1).z, 3.0f);
+  EXPECT_GE(g.columns() * g.rows(), g.count());
+}
+
+TEST(ProbeGridTest, LayoutScalesWithTheScene) {
+  const ProbeGrid a = placeProbes(box({-1, 0, -1}, {1, 0.5f, 1}), 4.0f);
+  const ProbeGrid b = placeProbes(box({-100, 0, -100}, {100, 50, 100}), 4.0f);
+  EXPECT_EQ(a.counts, b.counts);
+  for (int i = 0; i < a.count(); ++i) {
+    EXPECT_NEAR(a.position(i).x * 100.0f, b.position(i).x, 1e-3f);
+    EXPECT_NEAR(a.position(i).y * 100.0f, b.position(i).y, 1e-3f);
+  }
+  EXPECT_NEAR(a.diagonal * 100.0f, b.diagonal, 1e-3f);
+}
+
+TEST(ProbeGridTest, OverridesFlatAxesAndLimits) {
+  EXPECT_EQ(placeProbes(box({0, 0, 0}, {1, 1, 1}), 4.0f, {2, 3, 5}).counts, glm::ivec3(2, 3, 5));
+  // A ground plane alone: one layer of probes, a finite spacing on the flat axis.
+  const ProbeGrid flat = placeProbes(box({-5, 0, -5}, {5, 0, 5}), 4.0f);
+  EXPECT_EQ(flat.counts.y, 1);
+  EXPECT_GT(flat.spacing.y, 0.0f);
+  EXPECT_TRUE(placeProbes(Bounds{}, 4.0f).empty());
+  EXPECT_LE(placeProbes(box({0, 0, 0}, {1, 1, 1}), 64.0f, {64, 64, 64}).count(), kMaxProbes);
+}
+
+TEST(ProbeGridTest, EveryProbeOncePerSweep) {
+  const ProbeGrid g = placeProbes(box({0, 0, 0}, {4, 3, 5}), 4.0f);
+  const int n = g.count();
+  for (int per : {1, 2, 3, 7}) {
+    std::multiset<int> seen;
+    // Whole sweeps: lcm(n, per) / per captures visit every probe lcm / n times.
+    int captures = n;
+    for (uint64_t c = 0; c < static_cast<uint64_t>(captures); ++c) {
+      const auto probes = probesForCapture(g, c, per);
+      EXPECT_EQ(static_cast<int>(probes.size()), std::min(per, n));
+      for (int p : probes) seen.insert(p);
+    }
+    for (int p = 0; p < n; ++p) EXPECT_EQ(static_cast<int>(seen.count(p)), std::min(per, n)) << per;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::progressive
