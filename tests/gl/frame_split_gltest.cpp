@@ -209,9 +209,9 @@ TEST_F(FrameSplitGLTest, TileCountIsClampedToTheImageHeight) {
   EXPECT_EQ(r->frameTiles(), kMaxFrameTiles);
   auto p = r->stepPart();
   ASSERT_TRUE(p.ok());
-  // Frame 1 is environment only: lighting + accumulation, one band per row at most, and the
-  // young probe volume's first capture.
-  EXPECT_EQ(p->parts, 6);
+  // Frame 1 is environment only: lighting + accumulation, one band per row at most (the probe
+  // volume captures nothing before the first image after a reset).
+  EXPECT_EQ(p->parts, 5);
   while (!p->done) p = r->stepPart();
   // Unsplit, one part is the whole frame.
   r->setFrameTiles(0);

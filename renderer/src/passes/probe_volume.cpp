@@ -93,9 +93,11 @@ double ProbeVolume::meanCaptures() const {
   return sum / static_cast<double>(probeCaptures_.size());
 }
 
-glm::vec2 ProbeVolume::lightPoint() const {
+glm::vec2 ProbeVolume::lightPoint(uint32_t seed) const {
   if (captures_ == 0) return glm::vec2(0.5f);
-  return progressive::r2(static_cast<uint32_t>(captures_));
+  const glm::vec2 u =
+      progressive::r2(static_cast<uint32_t>(captures_)) + progressive::seedOffset(seed, 11);
+  return u - glm::floor(u);
 }
 
 void ProbeVolume::bind(const gl::Program& p, bool enabled) const {

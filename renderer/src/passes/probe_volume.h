@@ -60,8 +60,8 @@ class ProbeVolume {
   const progressive::ProbeGrid& grid() const { return grid_; }
   uint64_t captures() const { return captures_; }
   // The point on each light (in [0, 1]^2) the next capture's re-rendered map uses: the centre
-  // first, then the R2 sequence.
-  glm::vec2 lightPoint() const;
+  // first, then the R2 sequence rotated by the seed.
+  glm::vec2 lightPoint(uint32_t seed) const;
   // Mean captures per probe so far.
   double meanCaptures() const;
   // Sets the probe uniforms and binds the atlases on a program in use; `enabled` false (or an

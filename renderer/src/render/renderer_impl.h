@@ -428,13 +428,14 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     // Probe captures, the frame's last unit (a frame dropped part-way leaves the volume as it
     // was): every frame but the first, which captures only while the volume is young (so it
-    // still fills while a viewer orbits and frame 1 is all it draws).
-    if (probesOn() && (plan.frame >= 2 || probes->meanCaptures() < 4.0)) {
+    // still fills while a viewer orbits and frame 1 is all it draws), and never before the
+    // first frame after a reset (the first image comes as fast as without the volume).
+    if (probesOn() && (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
       units.push_back([this]() -> Status {
         passes::ProbeCaptureInputs in{
             .scene = scene.get(),
             .environment = environment.get(),
-            .lights = render::captureLights(lights, probes->lightPoint(), settings),
+            .lights = render::captureLights(lights, probes->lightPoint(settings.progressive.seed), settings),
             .pointShadows = &*pointShadows,
             .settings = &settings,
             .targets = &*targets};
