@@ -128,20 +128,9 @@ void main() {
   // Environment.
   if (uEnvWeight > 0.0) {
     vec3 irradiance = envIrradiance(n);
-    if (uProbeEnabled != 0) {
-      // The probe volume: the environment's light and every bounce, with the visibility the
-      // probes saw (which also stands in for the sky-shadow correction).
-      vec4 pv = probeIrradiance(vWorldPos, n, v);
-#if PN_CAPTURE
-      // Captures build on what the volume holds, nothing else: each adds a bounce.
-      irradiance = pv.rgb;
-#else
-      if (pv.a > 1e-3) irradiance = pv.rgb;
-#endif
-      skyLossWeight = pv.a > 1e-3 ? 0.0 : skyLossWeight;
-    }
     vec3 r = reflect(-v, n);
     vec3 prefiltered = envRadiance(r, s.perceptualRoughness);
+    bool diffuseHit = false, specularHit = false;
 #if PN_OCCLUSION
     {
       mat3 frame = tangentFrame(n);
@@ -153,6 +142,7 @@ void main() {
       if (traceOcclusion(vWorldPos, dDir, fract(uSequence.x * 7.0 + hash2(pixel, 5u).x), hit)) {
         irradiance = hit * PI;
         skyLossWeight = 0.0;
+        diffuseHit = true;
       }
       // Specular: one GGX half vector, reflected.
       vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
@@ -160,9 +150,36 @@ void main() {
       if (dot(sDir, n) > 0.0 &&
           traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {
         prefiltered = hit;
+        specularHit = true;
       }
     }
 #endif
+    // The probe volume answers what the screen-space rays did not: the environment's light and
+    // every bounce, with the visibility the probes saw (which also stands in for the sky-shadow
+    // correction). Looked up only when needed: a pixel whose rays both hit skips it, and the
+    // room's radiance is fetched only for surfaces glossy enough to show it (rough ones take
+    // E / pi below anyway).
+    bool glossy = s.perceptualRoughness < 0.9 && !specularHit;
+    if (uProbeEnabled != 0 && (!diffuseHit || glossy)) {
+      vec4 room;
+      vec4 pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
+#if PN_CAPTURE
+      // Captures build on what the volume holds, nothing else: each adds a bounce.
+      irradiance = pv.rgb;
+#else
+      if (pv.a > 1e-3) {
+        if (!diffuseHit) irradiance = pv.rgb;
+        // Glossy reflections of the room: where the probes see geometry toward r, their
+        // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
+        // surface gets rough (the probes' maps have no mip chain).
+        if (glossy) {
+          vec3 roomRadiance = mix(room.rgb, pv.rgb * INV_PI, s.perceptualRoughness);
+          prefiltered = mix(prefiltered, roomRadiance, room.a);
+        }
+        skyLossWeight = 0.0;
+      }
+#endif
+    }
     // The broad sheen lobe reflects the cosine-weighted environment (with this frame's
     // occlusion sample), scaled by its albedo: exact in a white furnace.
     color += uEnvWeight * s.occlusion * baseScale *

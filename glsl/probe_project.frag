@@ -1,7 +1,8 @@
 // Projects one probe's cube capture (six faces of PN_PROBE_CAPTURE_SIZE^2 texels, side by side
 // in a strip: rgb radiance, a signed distance in units of the volume's diagonal, negative on a
-// back face) onto its octahedral tile: irradiance (PN_PROBE_DEPTH 0) or the mean and mean
-// square distance about each direction (PN_PROBE_DEPTH 1). Border texels repeat the interior
+// back face) onto its octahedral tile: irradiance (PN_PROBE_MAP 0), the mean and mean square
+// distance about each direction (1), or the radiance seen in each direction with alpha 1 where
+// that is geometry, 0 where it is sky (2, glossy reflections of the room). Border texels repeat the interior
 // texel the octahedral wrap puts next to them, so bilinear lookups never bleed into another
 // probe. The caller blends the result into the atlas with the probe's running-mean weight.
 #include "chunks/octahedral.glsl"
@@ -14,8 +15,10 @@ uniform vec3 uFaceRight[6];
 uniform vec3 uFaceUp[6];
 out vec4 fragColor;
 
-#if PN_PROBE_DEPTH
+#if PN_PROBE_MAP == 1
 const int INTERIOR = PN_PROBE_DEPTH_TEXELS;
+#elif PN_PROBE_MAP == 2
+const int INTERIOR = PN_PROBE_RADIANCE_TEXELS;
 #else
 const int INTERIOR = PN_PROBE_IRRADIANCE_TEXELS;
 #endif
@@ -37,7 +40,25 @@ void main() {
   const int C = PN_PROBE_CAPTURE_SIZE;
   int x0 = int(uCaptureOrigin.x);
   int y0 = int(uCaptureOrigin.y);
-#if PN_PROBE_DEPTH
+#if PN_PROBE_MAP == 2
+  // The capture's texel in direction n: the face of its major axis, bilinear within the face.
+  int face = 0;
+  float best = -2.0;
+  for (int f = 0; f < 6; ++f) {
+    float c = dot(n, uFaceForward[f]);
+    if (c > best) {
+      best = c;
+      face = f;
+    }
+  }
+  vec2 st = vec2(dot(n, uFaceRight[face]), dot(n, uFaceUp[face])) / best;
+  vec2 texel = clamp((st * 0.5 + 0.5) * float(C), vec2(0.5), vec2(float(C) - 0.5));
+  vec2 size = vec2(textureSize(uCapture, 0));
+  vec4 L = textureLod(uCapture, (vec2(float(x0 + face * C), float(y0)) + texel) / size, 0.0);
+  float far = texelFetch(uCapture, ivec2(x0 + face * C, y0) + ivec2(texel), 0).a;
+  bool finite = all(lessThan(abs(L.rgb), vec3(1e30)));
+  fragColor = vec4(finite ? L.rgb : vec3(0.0), abs(far) < 3.5 ? 1.0 : 0.0);
+#elif PN_PROBE_MAP == 1
   // Distances about n, weighted by a sharp cosine lobe (about the tile's texel spacing).
   vec2 moments = vec2(0.0);
   float weight = 0.0;

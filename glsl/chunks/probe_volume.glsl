@@ -1,10 +1,12 @@
 // Probe volume (passes/probe_volume.h): irradiance probes on a grid over the scene, each with
 // an octahedral map of irradiance (alpha: 1 once captured and not buried in geometry) and one
 // of the mean and mean square distance to what it sees (in units of the volume's diagonal).
-// A shading point blends its eight surrounding probes: trilinear weights, times a soft
-// backface weight (probes behind the surface count less), times Chebyshev's bound on the
-// probability that the probe sees the point (no light through walls), as in DDGI (Majercik et
-// al., JCGT 2019) and Eevee's irradiance grid.
+// A third map holds the radiance the probe sees (alpha 1 where that is geometry, 0 where it
+// is sky), for glossy reflections of the room.
+// A shading point blends four surrounding probes: its barycentric weights in the tetrahedron of
+// its grid cell that holds it, times a soft backface weight (probes behind the surface count
+// less), times Chebyshev's bound on the probability that the probe sees the point (no light
+// through walls), as in DDGI (Majercik et al., JCGT 2019) and Eevee's irradiance grid.
 #include "chunks/octahedral.glsl"
 
 uniform int uProbeEnabled;
@@ -15,18 +17,27 @@ uniform float uProbeDiagonal;
 uniform int uProbeColumns;
 uniform sampler2D uProbeIrradiance;
 uniform sampler2D uProbeDepth;
+uniform sampler2D uProbeRadiance;
 
-vec2 probeAtlasUv(int probe, vec3 dir, float interior, vec2 atlasSize) {
+// The atlas position of direction `oct` (octEncode's) in a probe's tile.
+vec2 probeAtlasUv(int probe, vec2 oct, float interior, vec2 atlasSize) {
   float tile = interior + 2.0;
   vec2 corner = vec2(float(probe % uProbeColumns), float(probe / uProbeColumns)) * tile;
-  return (corner + 1.0 + (octEncode(dir) * 0.5 + 0.5) * interior) / atlasSize;
+  return (corner + 1.0 + (oct * 0.5 + 0.5) * interior) / atlasSize;
 }
 
 // Irradiance at p for normal n, seen from direction v (unit, toward the viewer), and the
-// summed weight of the captured probes it comes from (0: none yet, use something else).
-vec4 probeIrradiance(vec3 p, vec3 n, vec3 v) {
+// summed weight of the captured probes it comes from (0: none yet, use something else). Outside
+// captures, and with `glossy`, also the probes' radiance toward r (rgb) and the share of it that
+// is geometry (a).
+vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
+  // n and r are the same for every probe: encode them once.
+  vec2 octN = octEncode(n);
+  vec2 octR = octEncode(r);
   vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0));
   vec2 depthSize = vec2(textureSize(uProbeDepth, 0));
+  vec2 radSize = vec2(textureSize(uProbeRadiance, 0));
+  vec4 radSum = vec4(0.0);
   float minSpacing = min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
   // Off the surface, mostly toward the viewer: the lookup must not start inside the wall.
   vec3 q = p + (0.2 * n + 0.15 * v) * minSpacing;
@@ -38,11 +49,26 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v) {
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   float coverage = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  // Four probes, not eight: the cube is split into six tetrahedra along its main diagonal
+  // (Kuhn), and the point's barycentric weights in its own tetrahedron interpolate linearly
+  // and continuously. Half the texture fetches of trilinear weights, which a software
+  // rasterizer pays for at every pixel.
+  ivec3 ea, eb;  // the axes of the largest and second-largest fraction
+  if (f.x >= f.y && f.x >= f.z) {
+    ea = ivec3(1, 0, 0);
+    eb = f.y >= f.z ? ivec3(0, 1, 0) : ivec3(0, 0, 1);
+  } else if (f.y >= f.z) {
+    ea = ivec3(0, 1, 0);
+    eb = f.x >= f.z ? ivec3(1, 0, 0) : ivec3(0, 0, 1);
+  } else {
+    ea = ivec3(0, 0, 1);
+    eb = f.x >= f.y ? ivec3(1, 0, 0) : ivec3(0, 1, 0);
+  }
+  float fa = dot(f, vec3(ea)), fb = dot(f, vec3(eb)), fc = f.x + f.y + f.z - fa - fb;
+  for (int i = 0; i < 4; ++i) {
+    ivec3 o = i == 0 ? ivec3(0) : i == 1 ? ea : i == 2 ? ea + eb : ivec3(1);
     ivec3 c = min(base + o, last);
-    vec3 tri3 = mix(1.0 - f, f, vec3(o));
-    float tri = tri3.x * tri3.y * tri3.z;
+    float tri = i == 0 ? 1.0 - fa : i == 1 ? fa - fb : i == 2 ? fb - fc : fc;
     int index = c.x + counts.x * (c.y + counts.y * c.z);
     vec3 probePos = uProbeOrigin + vec3(c) * uProbeSpacing;
     vec3 toProbe = probePos - p;
@@ -51,7 +77,8 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v) {
     vec3 fromProbe = q - probePos;
     float dist = length(fromProbe);
     vec2 m = texture(uProbeDepth,
-                     probeAtlasUv(index, dist > 0.0 ? fromProbe / dist : n, float(PN_PROBE_DEPTH_TEXELS), depthSize)).rg;
+                     probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
+                                  float(PN_PROBE_DEPTH_TEXELS), depthSize)).rg;
     float d = dist / uProbeDiagonal;
     if (d > m.x) {
       float variance = abs(m.y - m.x * m.x);
@@ -63,12 +90,20 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v) {
     // Crush small weights: a barely visible probe should not tint the result.
     if (w < 0.2) w *= w * w * 25.0;
     vec4 irr = texture(uProbeIrradiance,
-                       probeAtlasUv(index, n, float(PN_PROBE_IRRADIANCE_TEXELS), irrSize));
+                       probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS), irrSize));
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
     w *= tri * valid;
     coverage += tri * valid;
     sum += w * irr.rgb;
     weightSum += w;
+#if !PN_CAPTURE
+    if (glossy) {
+      vec4 rad = texture(uProbeRadiance,
+                         probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS), radSize));
+      radSum += (w * rad.a) * vec4(rad.rgb, 1.0);
+    }
+#endif
   }
+  radiance = radSum.a > 0.0 ? vec4(radSum.rgb / radSum.a, radSum.a / weightSum) : vec4(0.0);
   return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
 }

@@ -78,8 +78,10 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     p.set("uProbeEnabled", 0);
     dummy_.bind(kUnitProbeIrradiance);
     dummy_.bind(kUnitProbeDepth);
+    dummy_.bind(kUnitProbeRadiance);
     p.set("uProbeIrradiance", kUnitProbeIrradiance);
     p.set("uProbeDepth", kUnitProbeDepth);
+    p.set("uProbeRadiance", kUnitProbeRadiance);
   }
 
   // This batch's area-light samples.

@@ -21,15 +21,16 @@ inline constexpr int kMaxPointShadows = 2;
 // array), which leaves units 13..15 free of WebGL2's guaranteed 16.
 inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
                      kUnitShadow = 9, kUnitPointShadow = kUnitShadow + 1;
-// The probe volume's two atlases (irradiance, depth moments).
-inline constexpr int kUnitProbeIrradiance = 13, kUnitProbeDepth = 14;
+// The probe volume's three atlases (irradiance, depth moments, radiance).
+inline constexpr int kUnitProbeIrradiance = 13, kUnitProbeDepth = 14, kUnitProbeRadiance = 15;
 static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeIrradiance,
               "the point shadows overlap the probe volume's units");
-static_assert(kUnitProbeDepth < 16, "WebGL2 guarantees 16 texture units");
+static_assert(kUnitProbeRadiance < 16, "WebGL2 guarantees 16 texture units");
 
-// Probe volume: interior texels of a probe's octahedral irradiance and depth-moment maps (each
-// tile has a one-texel border), and the face size of a probe's cube capture.
-inline constexpr int kProbeIrradianceTexels = 6, kProbeDepthTexels = 10, kProbeCaptureSize = 16;
+// Probe volume: interior texels of a probe's octahedral irradiance, depth-moment and radiance
+// maps (each tile has a one-texel border), and the face size of a probe's cube capture.
+inline constexpr int kProbeIrradianceTexels = 6, kProbeDepthTexels = 10, kProbeRadianceTexels = 14,
+                     kProbeCaptureSize = 16;
 
 inline gl::Defines limitDefines() {
   return {{"PN_MAX_SHADOW_MAPS", std::to_string(kMaxShadowMaps)},
@@ -37,6 +38,7 @@ inline gl::Defines limitDefines() {
           {"PN_MAX_POINT_SHADOWS", std::to_string(kMaxPointShadows)},
           {"PN_PROBE_IRRADIANCE_TEXELS", std::to_string(kProbeIrradianceTexels)},
           {"PN_PROBE_DEPTH_TEXELS", std::to_string(kProbeDepthTexels)},
+          {"PN_PROBE_RADIANCE_TEXELS", std::to_string(kProbeRadianceTexels)},
           {"PN_PROBE_CAPTURE_SIZE", std::to_string(kProbeCaptureSize)}};
 }
 

@@ -33,14 +33,13 @@ Result<gl::Texture2D> atlas(int w, int h) {
 
 Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
   ProbeVolume v;
-  auto irr = library.program("fullscreen.vert", "probe_project.frag",
-                             {{"PN_FAR_PLANE", "0"}, {"PN_PROBE_DEPTH", "0"}});
-  if (!irr) return irr.error();
-  v.project_ = *irr;
-  auto depth = library.program("fullscreen.vert", "probe_project.frag",
-                               {{"PN_FAR_PLANE", "0"}, {"PN_PROBE_DEPTH", "1"}});
-  if (!depth) return depth.error();
-  v.projectDepth_ = *depth;
+  gl::Program** programs[3] = {&v.project_, &v.projectDepth_, &v.projectRadiance_};
+  for (int map = 0; map < 3; ++map) {
+    auto p = library.program("fullscreen.vert", "probe_project.frag",
+                             {{"PN_FAR_PLANE", "0"}, {"PN_PROBE_MAP", std::to_string(map)}});
+    if (!p) return p.error();
+    *programs[map] = *p;
+  }
   v.quad_ = gl::VertexArray::create();
   for (int i = 0; i < kMaxCaptureLights / kMaxShadowMaps; ++i) {
     auto sp = ShadowPass::create(library, kLightMapSize);
@@ -54,22 +53,25 @@ Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
   grid_ = grid;
   irradiance_ = {};
   depth_ = {};
+  radiance_ = {};
   if (grid_.empty()) return {};
   const int cols = grid_.columns(), rows = grid_.rows();
-  auto irr = atlas(cols * (kProbeIrradianceTexels + 2), rows * (kProbeIrradianceTexels + 2));
-  if (!irr) return makeError("probe volume: " + irr.message());
-  irradiance_ = std::move(*irr);
-  auto depth = atlas(cols * (kProbeDepthTexels + 2), rows * (kProbeDepthTexels + 2));
-  if (!depth) return makeError("probe volume: " + depth.message());
-  depth_ = std::move(*depth);
-  irradianceFb_ = gl::Framebuffer::create();
-  irradianceFb_.attachColor(0, irradiance_);
-  irradianceFb_.setDrawBuffers(1);
-  PN_TRY(irradianceFb_.checkComplete());
-  depthFb_ = gl::Framebuffer::create();
-  depthFb_.attachColor(0, depth_);
-  depthFb_.setDrawBuffers(1);
-  PN_TRY(depthFb_.checkComplete());
+  struct Map {
+    gl::Texture2D* texture;
+    gl::Framebuffer* framebuffer;
+    int interior;
+  };
+  for (const Map& m : {Map{&irradiance_, &irradianceFb_, kProbeIrradianceTexels},
+                       Map{&depth_, &depthFb_, kProbeDepthTexels},
+                       Map{&radiance_, &radianceFb_, kProbeRadianceTexels}}) {
+    auto tex = atlas(cols * (m.interior + 2), rows * (m.interior + 2));
+    if (!tex) return makeError("probe volume: " + tex.message());
+    *m.texture = std::move(*tex);
+    *m.framebuffer = gl::Framebuffer::create();
+    m.framebuffer->attachColor(0, *m.texture);
+    m.framebuffer->setDrawBuffers(1);
+    PN_TRY(m.framebuffer->checkComplete());
+  }
   clear();
   return {};
 }
@@ -80,7 +82,7 @@ void ProbeVolume::clear() {
   probeCaptures_.assign(static_cast<size_t>(grid_.count()), 0);
   if (grid_.empty()) return;
   gl::apply({.depthTest = gl::DepthTest::Off, .depthWrite = false});
-  for (gl::Framebuffer* fb : {&irradianceFb_, &depthFb_}) {
+  for (gl::Framebuffer* fb : {&irradianceFb_, &depthFb_, &radianceFb_}) {
     fb->bind();
     gl::clearBufferFloat(0, 0, 0, 0, 0);
   }
@@ -105,9 +107,11 @@ void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
   p.set("uProbeEnabled", on ? 1 : 0);
   p.set("uProbeIrradiance", kUnitProbeIrradiance);
   p.set("uProbeDepth", kUnitProbeDepth);
+  p.set("uProbeRadiance", kUnitProbeRadiance);
   if (!on) return;
   irradiance_.bind(kUnitProbeIrradiance);
   depth_.bind(kUnitProbeDepth);
+  radiance_.bind(kUnitProbeRadiance);
   p.set("uProbeOrigin", grid_.origin);
   p.set("uProbeSpacing", grid_.spacing);
   p.set("uProbeCounts", glm::vec3(grid_.counts));
@@ -272,10 +276,12 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   // Project each probe onto its tiles, blended into the running means.
   std::vector<glm::vec3> right(6);
   for (size_t f = 0; f < 6; ++f) right[f] = glm::cross(kForward[f], kUp[f]);
-  for (const bool depth : {false, true}) {
-    const gl::Program& p = depth ? *projectDepth_ : *project_;
-    const int tile = (depth ? kProbeDepthTexels : kProbeIrradianceTexels) + 2;
-    (depth ? depthFb_ : irradianceFb_).bind();
+  for (int map = 0; map < 3; ++map) {
+    const gl::Program& p = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
+    const int tile =
+        (map == 0 ? kProbeIrradianceTexels : map == 1 ? kProbeDepthTexels : kProbeRadianceTexels) +
+        2;
+    (map == 0 ? irradianceFb_ : map == 1 ? depthFb_ : radianceFb_).bind();
     p.use();
     capture_.bind(0);
     p.set("uCapture", 0);
@@ -307,6 +313,7 @@ int64_t ProbeVolume::memoryBytes() const {
   int64_t bytes = 0;
   if (irradiance_) bytes += int64_t{8} * irradiance_.width() * irradiance_.height();
   if (depth_) bytes += int64_t{8} * depth_.width() * depth_.height();
+  if (radiance_) bytes += int64_t{8} * radiance_.width() * radiance_.height();
   if (capture_) bytes += int64_t{12} * capture_.width() * capture_.height();
   bytes += static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize *
            kLightMapSize;

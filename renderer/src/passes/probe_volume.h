@@ -3,8 +3,9 @@
 // probes' cube maps (PN_CAPTURE lighting: every light at full weight, shadowed by maps the
 // volume keeps one per light and re-renders from a new point on the light one per capture, the
 // environment where the probe sees sky, and what the volume already holds on every surface, so
-// repeated captures add bounces), and projects them onto octahedral tiles of two atlases:
-// irradiance, and the mean and mean square distance for Chebyshev visibility. Each tile keeps a
+// repeated captures add bounces), and projects them onto octahedral tiles of three atlases:
+// irradiance, the mean and mean square distance for Chebyshev visibility, and the radiance the
+// probe sees (glossy reflections of the room where it sees geometry rather than sky). Each tile keeps a
 // running mean of its captures (constant-alpha blending in place, the weight 1/n capped so the
 // newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
 #pragma once
@@ -77,11 +78,12 @@ class ProbeVolume {
   Status renderLightMaps(const ProbeCaptureInputs& in);
 
   progressive::ProbeGrid grid_;
-  gl::Program* project_ = nullptr;       // irradiance
-  gl::Program* projectDepth_ = nullptr;  // depth moments
+  gl::Program* project_ = nullptr;          // irradiance
+  gl::Program* projectDepth_ = nullptr;     // depth moments
+  gl::Program* projectRadiance_ = nullptr;  // radiance
   gl::VertexArray quad_;
-  gl::Texture2D irradiance_, depth_;
-  gl::Framebuffer irradianceFb_, depthFb_;
+  gl::Texture2D irradiance_, depth_, radiance_;
+  gl::Framebuffer irradianceFb_, depthFb_, radianceFb_;
   gl::Texture2D capture_;
   gl::Renderbuffer captureDepth_;
   gl::Framebuffer captureFb_;
