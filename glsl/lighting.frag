@@ -87,7 +87,10 @@ void main() {
   // white furnace reflects exactly the environment.
   diffuseColor *= vec3(1.0) - specularScale;
 #if PN_CAPTURE
-  // Probes store irradiance: only the view-independent diffuse light leaves a captured surface.
+  // Probes store irradiance, so light leaves a captured surface view-independently: the
+  // specular layer's directional albedo is reflected as if diffuse (energy kept, metals not
+  // black), and no specular lobe is evaluated.
+  diffuseColor += specularScale;
   f0 = vec3(0.0);
   f90 = 0.0;
   specularScale = vec3(0.0);

@@ -49,8 +49,9 @@ class ProbeVolume {
   // Shadowed lights a capture can shade (area, spot, directional; point lights use the frame's
   // cube maps): two shadow passes of kMaxShadowMaps maps.
   static constexpr int kMaxCaptureLights = 2 * kMaxShadowMaps;
-  // Captures averaged at most: later ones weigh 1/kHistory, so new bounces still arrive.
-  static constexpr int kHistory = 16;
+  // Captures averaged at most: later ones weigh 1/kHistory (an exponential moving average, as
+  // DDGI's hysteresis), so the bounces each capture adds arrive quickly.
+  static constexpr int kHistory = 4;
 
   static Result<ProbeVolume> create(gl::ShaderLibrary& library);
   // Lays out a grid and empties the volume (an empty grid turns it off).

@@ -439,7 +439,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
             .pointShadows = &*pointShadows,
             .settings = &settings,
             .targets = &*targets};
-        const int n = std::min(settings.progressive.probesPerFrame, probes->grid().count());
+        // A young volume (under two captures a probe) fills faster: two sweeps in about 16
+        // frames, so the frames averaged early do not hold back the converged image.
+        const int count = probes->grid().count();
+        int n = settings.progressive.probesPerFrame;
+        if (probes->meanCaptures() < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
+        n = std::min(n, count);
         PN_TRY(probes->capture(*lighting, in, n));
         stats.probeCaptures = n;
         endPass(&stats.probeMs);
