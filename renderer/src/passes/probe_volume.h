@@ -69,7 +69,8 @@ class ProbeVolume {
   // Sets the probe uniforms and binds the atlases on a program in use; `enabled` false (or an
   // inactive volume) sets uProbeEnabled 0.
   void bind(const gl::Program& program, bool enabled) const;
-  // Captures the next `count` probes of the grid's order and blends them into the atlases.
+  // Captures the next `count` probes of the grid's order and blends them into the atlases;
+  // each call first re-renders one light's map from lightPoint().
   Status capture(LightingPass& lighting, const ProbeCaptureInputs& in, int count);
   // Bytes of GPU memory the volume holds (atlases, capture target, shadow maps).
   int64_t memoryBytes() const;

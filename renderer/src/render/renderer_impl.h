@@ -426,32 +426,36 @@ struct Renderer::Impl : progressive::FrameRenderer {
         });
       }
     }
-    // Probe captures, the frame's last unit (a frame dropped part-way leaves the volume as it
-    // was): every frame but the first, which captures only while the volume is young (so it
-    // still fills while a viewer orbits and frame 1 is all it draws), and never before the
-    // first frame after a reset (the first image comes as fast as without the volume).
-    if (probesOn() && (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
-      units.push_back([this]() -> Status {
-        passes::ProbeCaptureInputs in{
-            .scene = scene.get(),
-            .environment = environment.get(),
-            .lights = render::captureLights(lights, probes->lightPoint(settings.progressive.seed), settings),
-            .pointShadows = &*pointShadows,
-            .settings = &settings,
-            .targets = &*targets};
-        // A young volume (under two captures a probe) fills faster: two sweeps in about 16
-        // frames, so the frames averaged early do not hold back the converged image.
-        const int count = probes->grid().count();
-        int n = settings.progressive.probesPerFrame;
-        if (probes->meanCaptures() < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
-        n = std::min(n, count);
-        PN_TRY(probes->capture(*lighting, in, n));
-        stats.probeCaptures = n;
-        endPass(&stats.probeMs);
-        return {};
-      });
+    // Probe captures, the frame's last units, one probe each (a frame dropped part-way keeps
+    // the captures it made; the web viewer's time budget sees probe-sized parts): every frame
+    // but the first, which captures only while the volume is young (so it still fills while a
+    // viewer orbits and frame 1 is all it draws), and never before the first frame after a
+    // reset (the first image comes as fast as without the volume).
+    if (probesOn() &&
+        (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
+      // A young volume (under two captures a probe) fills faster: two sweeps in about 16
+      // frames, so the frames averaged early do not hold back the converged image.
+      const int count = probes->grid().count();
+      int n = settings.progressive.probesPerFrame;
+      if (probes->meanCaptures() < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
+      n = std::min(n, count);
+      for (int i = 0; i < n; ++i) {
+        units.push_back([this]() -> Status {
+          passes::ProbeCaptureInputs in{
+              .scene = scene.get(),
+              .environment = environment.get(),
+              .lights = render::captureLights(
+                  lights, probes->lightPoint(settings.progressive.seed), settings),
+              .pointShadows = &*pointShadows,
+              .settings = &settings,
+              .targets = &*targets};
+          PN_TRY(probes->capture(*lighting, in, 1));
+          ++stats.probeCaptures;
+          endPass(&stats.probeMs);
+          return {};
+        });
+      }
     }
-
   }
 
   // Runs the pending frame's next unit (all of them unsplit). True once the frame is done.
