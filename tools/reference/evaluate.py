@@ -301,6 +301,11 @@ def write_report(a, results, skipped, frames, when):
     L.append("")
     L.append("```\ntools/evaluate            # --render-refs also makes missing references\n```")
     L.append("")
+    L.append("**The probe volume.** Every scene with and without Penumbra's probe volume (on by "
+             "default since issue #14), at 16 and 128 frames against the same Cycles and Eevee "
+             "renders: [probe-volume.md](probe-volume.md) (`tools/gi-eval --size WxH`, from the "
+             "references cached here).")
+    L.append("")
     L.append("The browser's path-tracer hand-off (Penumbra against three-gpu-pathtracer at the moment "
              "the path tracer takes over) has its own table: [handoff.md](handoff.md) "
              "(`node tools/handoff-eval.mjs`).")
