@@ -159,10 +159,17 @@ void main() {
 #endif
     // The probe volume answers what the screen-space rays did not: the environment's light and
     // every bounce, with the visibility the probes saw (which also stands in for the sky-shadow
-    // correction). Looked up only when needed: a pixel whose rays both hit skips it, and the
-    // room's radiance is fetched only for surfaces glossy enough to show it (rough ones take
-    // E / pi below anyway).
-    bool glossy = s.perceptualRoughness < 0.9 && !specularHit;
+    // correction). Looked up only when needed: a pixel whose rays both hit skips it.
+    // Frame 1 (no occlusion) keeps the sky's reflection: it is the frame shown while the view
+    // moves, and one frame of a long mean. Elsewhere only surfaces whose specular layer shows
+    // enough of the room (reflectance times smoothness) pay for the radiance lookup.
+#if PN_OCCLUSION
+    float showsRoom = max(specularScale.r, max(specularScale.g, specularScale.b)) *
+                      (1.0 - s.perceptualRoughness);
+    bool glossy = showsRoom > 0.01 && !specularHit;
+#else
+    bool glossy = false;
+#endif
     if (uProbeEnabled != 0 && (!diffuseHit || glossy)) {
       vec4 room;
       vec4 pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
