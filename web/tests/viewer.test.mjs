@@ -41,9 +41,12 @@ const REPEAT_MEAN_TOL = 0.002;
 // RGBA16F vs RGBA32F accumulation of the same 16 frames (half precision: 11 significant bits).
 const HALF_MEAN_TOL = 0.004;
 const HALF_MAX_TOL = 0.1;
+// The probe volume on (the default) vs off (gi=0), 8x8 block means: it must change the image.
+const GI_BLOCK_MEAN_MIN = 0.01;
 
 // The golden image, used when build/tools/render/penumbra-render is not built (set
-// PENUMBRA_RENDER to use another build). Made from the renderer of commit 11f14ec with:
+// PENUMBRA_RENDER to use another build). Made from the renderer of commit d840cd0 (probe
+// volume on, the default) with:
 //   MESA_GLES_VERSION_OVERRIDE=3.0 build/tools/render/penumbra-render \
 //     assets/cornell_box/cornell_box.json -o web/tests/golden/cornell_160_f16.png \
 //     --size 160x160 --frames 16 -q
@@ -246,6 +249,14 @@ test('orbit drag restarts accumulation, at lower resolution while moving', { tim
     const d = diff(shared.converged, shared.orbited);
     assert.ok(d.mean > 0.01, `the view changed (${fmt(d)})`);
     await page.evaluate(() => window.penumbraPage.viewer.setSettings({ budgetMs: 12 }));
+    // The probe volume keeps its captures over camera moves, so this image holds more of them
+    // than a restart's (restart() empties the volume): the later tests repeat the restarted one.
+    const again = await pageState(page);
+    await page.evaluate(() => window.penumbraPage.viewer.restart());
+    await waitConverged(page, again.convergedCount);
+    const moved = shared.orbited;
+    shared.orbited = await pixels(page);
+    console.log(`# after the drag vs restarted: ${fmt(diff(moved, shared.orbited))}`);
   });
 });
 
@@ -397,4 +408,24 @@ test('half-float accumulation (forceHalfFloat) converges to the float image', { 
     assert.ok(d.max <= HALF_MAX_TOL, `max ${fmt(d)}`);
   });
   await half.close();
+});
+
+test('the probe volume brightens the Cornell box; gi=0 turns it off', { timeout: TEST_MS }, async () => {
+  assert.ok(shared.converged, 'needs the converged canvas of the first test (probe volume on)');
+  assert.equal(await page.evaluate(() => window.penumbraPage.viewer.settings.probeVolume), true);
+  const off = await openPage(`${QUERY}&gi=0`);
+  await step('gi-off', off, async () => {
+    assert.equal(await off.evaluate(() => window.penumbraPage.viewer.settings.probeVolume), false);
+    await waitConverged(off, 0);
+    const img = await pixels(off);
+    const b = diff(blocks(shared.converged, BLOCK), blocks(img, BLOCK));
+    const mean = (im) => im.data.reduce((sum, v, i) => sum + (i % 4 < 3 ? v : 0), 0) /
+                         (im.width * im.height * 3 * 255);
+    const on = mean(shared.converged), without = mean(img);
+    console.log(`# probe volume on vs off: ${BLOCK}x${BLOCK} blocks ${fmt(b)}; ` +
+                `mean display value ${on.toFixed(4)} vs ${without.toFixed(4)}`);
+    assert.ok(b.mean >= GI_BLOCK_MEAN_MIN, `blocks: mean < ${GI_BLOCK_MEAN_MIN} (${fmt(b)})`);
+    assert.ok(on > without, `brighter with the probe volume (${on} vs ${without})`);
+  });
+  await off.close();
 });
