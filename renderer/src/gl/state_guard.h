@@ -12,7 +12,7 @@ namespace penumbra::gl {
 
 class StateGuard {
  public:
-  static constexpr int kUnits = 16;  // texture units saved (Penumbra uses 0..12)
+  static constexpr int kUnits = 16;  // texture units saved (Penumbra uses 0..15)
   // Does nothing when `active` is false (a Renderer in a context of its own).
   explicit StateGuard(bool active);
   ~StateGuard();
