@@ -19,7 +19,8 @@ Mesh insideBox(glm::vec3 lo, glm::vec3 hi, int material) {
   Mesh m = boxMesh(lo, hi, material);
   for (Primitive& p : m.primitives) {
     for (glm::vec3& n : p.normals) n = -n;
-    for (size_t i = 0; i + 2 < p.indices.size(); i += 3) std::swap(p.indices[i + 1], p.indices[i + 2]);
+    for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
+      std::swap(p.indices[i + 1], p.indices[i + 2]);
   }
   return m;
 }
@@ -114,8 +115,8 @@ TEST_F(ProbeVolumeGLTest, ClosedBoxReachesTheRadiosityBalance) {
   double expected = 0.0;
   const double with = closedBoxMean(true, &expected);
   const double without = closedBoxMean(false, &expected);
-  std::printf("closed box: mean radiance %.4f with the volume, %.4f without, %.4f expected\n",
-              with, without, expected);
+  std::printf("closed box: mean radiance %.4f with the volume, %.4f without, %.4f expected\n", with,
+              without, expected);
   EXPECT_NEAR(with, expected, 0.10 * expected);
   // Screen-space light alone misses most of the bounces: the test can tell the difference.
   EXPECT_LT(without, 0.85 * expected);

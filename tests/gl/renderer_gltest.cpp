@@ -214,7 +214,7 @@ TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
 }
 
 TEST_F(RendererGLTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
-  Loaded l = loadCornell(24, 32);  // black environment
+  Loaded l = loadCornell(24, 32);             // black environment
   l.settings.progressive.skyShadows = false;  // counted above; here: area-light samples only
   auto r = makeRenderer(l);
   ASSERT_EQ(*r->step(), 1);

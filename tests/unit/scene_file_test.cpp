@@ -207,15 +207,16 @@ TEST(SceneFileTest, ProbeVolumeOverrideRoundTrips) {
   EXPECT_EQ(back->probeVolume.min, sf->probeVolume.min);
   EXPECT_EQ(back->probeVolume.counts, sf->probeVolume.counts);
   // Counts alone keep the automatic box.
-  auto counts = parseSceneJson(R"({"gltf": "a.gltf", "probeVolume": {"counts": [2, 2, 2]}})",
-                               "", "c.json");
+  auto counts =
+      parseSceneJson(R"({"gltf": "a.gltf", "probeVolume": {"counts": [2, 2, 2]}})", "", "c.json");
   ASSERT_TRUE(counts.ok());
   EXPECT_FALSE(counts->probeVolume.hasBox);
-  for (const char* bad : {R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0]}})",
-                          R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0], "max": [1, 0, 1]}})",
-                          R"({"gltf": "a.gltf", "probeVolume": {"counts": [0, 1, 1]}})",
-                          R"({"gltf": "a.gltf", "probeVolume": {"counts": [1, 1]}})",
-                          R"({"gltf": "a.gltf", "probeVolume": 3})"}) {
+  for (const char* bad :
+       {R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0]}})",
+        R"({"gltf": "a.gltf", "probeVolume": {"min": [0, 0, 0], "max": [1, 0, 1]}})",
+        R"({"gltf": "a.gltf", "probeVolume": {"counts": [0, 1, 1]}})",
+        R"({"gltf": "a.gltf", "probeVolume": {"counts": [1, 1]}})",
+        R"({"gltf": "a.gltf", "probeVolume": 3})"}) {
     auto e = parseSceneJson(bad, "", "bad.json");
     ASSERT_FALSE(e.ok()) << bad;
     EXPECT_NE(e.message().find("probeVolume"), std::string::npos) << e.message();

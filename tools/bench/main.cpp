@@ -164,11 +164,11 @@ int main(int argc, char** argv) {
             row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
       }
       if (row->probes.probes > 0) {
-        std::printf("|   probe volume: %d probes (%dx%dx%d), %.2f MB GPU memory, %.1f captures per "
-                    "probe after both runs | | | | | | | |\n",
-                    row->probes.probes, row->probes.counts[0], row->probes.counts[1],
-                    row->probes.counts[2], static_cast<double>(row->probes.bytes) / 1048576.0,
-                    row->probes.meanCaptures);
+        std::printf(
+            "|   probe volume: %d probes (%dx%dx%d), %.2f MB GPU memory, %.1f captures per "
+            "probe after both runs | | | | | | | |\n",
+            row->probes.probes, row->probes.counts[0], row->probes.counts[1], row->probes.counts[2],
+            static_cast<double>(row->probes.bytes) / 1048576.0, row->probes.meanCaptures);
       }
       std::fflush(stdout);
     }

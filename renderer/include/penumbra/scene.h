@@ -175,7 +175,7 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Camera> cameras;
   std::vector<Light> lights;
-  Bounds bounds;                      // world space, of all instances
+  Bounds bounds;  // world space, of all instances
   // The probe volume's box and probes per axis, from a scene file (an invalid box: the
   // bounds; a count of 0: from the density setting).
   Bounds probeBox;

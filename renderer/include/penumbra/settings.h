@@ -47,7 +47,7 @@ struct ProgressiveSettings {
   bool probeVolume = true;
   float probeDensity = 4.0f;  // probes along the scene's longest side (the others follow)
   int probesPerFrame = 2;     // probe captures per intermediate frame
-  uint32_t seed = 1;  // rotates every sample sequence
+  uint32_t seed = 1;          // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };
 

@@ -115,8 +115,8 @@ const SettingInfo kSchema[] = {
      SettingType::Float, 0, 30, false, false, false, true,
      "angular diameter of directional lights in degrees (soft shadow edges; 0.53 = the sun)",
      PN_FIELD(progressive.directionalAngle, float)},
-    {"probeVolume", "progressive", "probeVolume", "--no-gi", SettingType::Bool, 0, 1, false,
-     false, false, true,
+    {"probeVolume", "progressive", "probeVolume", "--no-gi", SettingType::Bool, 0, 1, false, false,
+     false, true,
      "probe volume: multi-bounce indirect light from irradiance probes over the scene, captured "
      "a few per frame",
      PN_BOOL(progressive.probeVolume)},

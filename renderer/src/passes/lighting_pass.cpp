@@ -183,8 +183,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
   if (!b.scene || views.empty()) return {};
   const glm::mat3 envRotation(glm::rotate(
       glm::mat4(1.0f), glm::radians(-b.settings->environmentRotation), glm::vec3(0, 1, 0)));
-  const gl::Program& p =
-      *captureVariants_[(b.area.empty() ? 0 : 1) | (b.punctual.empty() ? 0 : 2)];
+  const gl::Program& p = *captureVariants_[(b.area.empty() ? 0 : 1) | (b.punctual.empty() ? 0 : 2)];
   setUniforms(p, b, envRotation);
   gl::PipelineState state;
   if (!b.first) {

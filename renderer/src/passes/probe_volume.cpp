@@ -15,18 +15,18 @@ constexpr int kC = kProbeCaptureSize;
 constexpr int kSlotsPerRow = 8;  // probe captures side by side in the capture target
 constexpr int kLightMapSize = 512;
 // Cube faces: forward and up of each 90-degree view; right = forward x up (glm::lookAt's).
-const std::array<glm::vec3, 6> kForward = {glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0),
-                                           glm::vec3(0, 1, 0),  glm::vec3(0, -1, 0),
-                                           glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
-const std::array<glm::vec3, 6> kUp = {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1),
+const std::array<glm::vec3, 6> kForward = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
+                                           glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
+                                           glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
+const std::array<glm::vec3, 6> kUp = {glm::vec3(0, 1, 0),  glm::vec3(0, 1, 0), glm::vec3(0, 0, 1),
                                       glm::vec3(0, 0, -1), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)};
 
 Result<gl::Texture2D> atlas(int w, int h) {
-  return gl::Texture2D::create({.width = w,
-                                .height = h,
-                                .format = gl::PixelFormat::RGBA16F,
-                                .sampler = {.minFilter = gl::Filter::Linear,
-                                            .magFilter = gl::Filter::Linear}});
+  return gl::Texture2D::create(
+      {.width = w,
+       .height = h,
+       .format = gl::PixelFormat::RGBA16F,
+       .sampler = {.minFilter = gl::Filter::Linear, .magFilter = gl::Filter::Linear}});
 }
 
 }  // namespace
@@ -251,8 +251,8 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
     const int y0 = static_cast<int>(s / kSlotsPerRow) * kC;
     for (int f = 0; f < 6; ++f) {
       CaptureView v;
-      v.camera.view = glm::lookAt(p, p + kForward[static_cast<size_t>(f)],
-                                  kUp[static_cast<size_t>(f)]);
+      v.camera.view =
+          glm::lookAt(p, p + kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
       v.camera.projection = proj;
       v.camera.position = p;
       v.camera.viewOrigin = glm::vec4(p, 1.0f);
@@ -278,9 +278,10 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   for (size_t f = 0; f < 6; ++f) right[f] = glm::cross(kForward[f], kUp[f]);
   for (int map = 0; map < 3; ++map) {
     const gl::Program& p = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
-    const int tile =
-        (map == 0 ? kProbeIrradianceTexels : map == 1 ? kProbeDepthTexels : kProbeRadianceTexels) +
-        2;
+    const int tile = (map == 0   ? kProbeIrradianceTexels
+                      : map == 1 ? kProbeDepthTexels
+                                 : kProbeRadianceTexels) +
+                     2;
     (map == 0 ? irradianceFb_ : map == 1 ? depthFb_ : radianceFb_).bind();
     p.use();
     capture_.bind(0);
@@ -315,8 +316,8 @@ int64_t ProbeVolume::memoryBytes() const {
   if (depth_) bytes += int64_t{8} * depth_.width() * depth_.height();
   if (radiance_) bytes += int64_t{8} * radiance_.width() * radiance_.height();
   if (capture_) bytes += int64_t{12} * capture_.width() * capture_.height();
-  bytes += static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize *
-           kLightMapSize;
+  bytes +=
+      static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize * kLightMapSize;
   return bytes;
 }
 

@@ -5,9 +5,9 @@
 // environment where the probe sees sky, and what the volume already holds on every surface, so
 // repeated captures add bounces), and projects them onto octahedral tiles of three atlases:
 // irradiance, the mean and mean square distance for Chebyshev visibility, and the radiance the
-// probe sees (glossy reflections of the room where it sees geometry rather than sky). Each tile keeps a
-// running mean of its captures (constant-alpha blending in place, the weight 1/n capped so the
-// newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
+// probe sees (glossy reflections of the room where it sees geometry rather than sky). Each tile
+// keeps a running mean of its captures (constant-alpha blending in place, the weight 1/n capped so
+// the newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
 #pragma once
 
 #include <cstdint>
@@ -93,7 +93,7 @@ class ProbeVolume {
   std::vector<ShadowPass> lightMaps_;
   // Per shadowed light: its map's view (after the first capture), and how many it had.
   std::vector<ShadowView> lightViews_;
-  std::vector<int> lightIndex_;         // into the light list, per shadowed slot
+  std::vector<int> lightIndex_;            // into the light list, per shadowed slot
   std::vector<glm::vec3> lightDirection_;  // of the direction-jittered ones' maps
   bool lightMapsValid_ = false;
   std::vector<int> probeCaptures_;

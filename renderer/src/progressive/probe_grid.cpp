@@ -25,8 +25,8 @@ int ProbeGrid::rows() const {
 
 ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
   ProbeGrid g;
-  if (!box.valid() || !std::isfinite(box.min.x + box.min.y + box.min.z + box.max.x + box.max.y +
-                                     box.max.z)) {
+  if (!box.valid() ||
+      !std::isfinite(box.min.x + box.min.y + box.min.z + box.max.x + box.max.y + box.max.z)) {
     return g;
   }
   const glm::vec3 extent = box.max - box.min;
@@ -34,14 +34,12 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
   if (!(longest > 0.0f)) return g;
   const float cellSize = longest / std::max(density, 1.0f);
   for (int a = 0; a < 3; ++a) {
-    int n = counts[a] > 0 ? counts[a]
-                          : static_cast<int>(std::lround(extent[a] / cellSize));
+    int n = counts[a] > 0 ? counts[a] : static_cast<int>(std::lround(extent[a] / cellSize));
     n = std::clamp(n, 1, 64);
     g.counts[a] = n;
     // A flat axis (a ground plane alone) keeps the cell size, so biases stay finite.
     g.spacing[a] = extent[a] > 1e-6f * longest ? extent[a] / static_cast<float>(n) : cellSize;
-    g.origin[a] = extent[a] > 1e-6f * longest ? box.min[a] + 0.5f * g.spacing[a]
-                                              : box.min[a];
+    g.origin[a] = extent[a] > 1e-6f * longest ? box.min[a] + 0.5f * g.spacing[a] : box.min[a];
   }
   // Halve the densest axes until the atlas fits.
   while (g.count() > kMaxProbes) {
@@ -67,8 +65,8 @@ std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int p
   while (std::gcd(stride, static_cast<uint64_t>(n)) != 1) ++stride;
   const int k = std::min(perCapture, n);
   for (int j = 0; j < k; ++j) {
-    const uint64_t slot = (capture * static_cast<uint64_t>(k) + static_cast<uint64_t>(j)) %
-                          static_cast<uint64_t>(n);
+    const uint64_t slot =
+        (capture * static_cast<uint64_t>(k) + static_cast<uint64_t>(j)) % static_cast<uint64_t>(n);
     out.push_back(static_cast<int>((slot * stride) % static_cast<uint64_t>(n)));
   }
   return out;

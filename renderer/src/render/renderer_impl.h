@@ -444,8 +444,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           passes::ProbeCaptureInputs in{
               .scene = scene.get(),
               .environment = environment.get(),
-              .lights = render::captureLights(
-                  lights, probes->lightPoint(settings.progressive.seed), settings),
+              .lights = render::captureLights(lights, probes->lightPoint(settings.progressive.seed),
+                                              settings),
               .pointShadows = &*pointShadows,
               .settings = &settings,
               .targets = &*targets};

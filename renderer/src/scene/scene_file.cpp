@@ -259,8 +259,9 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
     if (hasMin || hasMax) {
       if (!vec3("min", pv.min) || !vec3("max", pv.max) || !(pv.min.x < pv.max.x) ||
           !(pv.min.y < pv.max.y) || !(pv.min.z < pv.max.z)) {
-        return makeError(name + ": 'probeVolume' needs both 'min' and 'max' as [x, y, z], with "
-                                "min below max on every axis");
+        return makeError(name +
+                         ": 'probeVolume' needs both 'min' and 'max' as [x, y, z], with "
+                         "min below max on every axis");
       }
       pv.hasBox = true;
     }
