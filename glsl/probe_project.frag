@@ -2,13 +2,12 @@
 // in a strip: rgb radiance, a signed distance in units of the volume's diagonal, negative on a
 // back face) onto its octahedral tile: irradiance (PN_PROBE_MAP 0), the mean and mean square
 // distance about each direction (1), or the radiance seen in each direction with alpha 1 where
-// that is geometry, 0 where it is sky (2, glossy reflections of the room). Border texels repeat the interior
-// texel the octahedral wrap puts next to them, so bilinear lookups never bleed into another
-// probe. The caller blends the result into the atlas with the probe's running-mean weight.
+// that is geometry, 0 where it is sky (2, glossy reflections of the room). Border texels repeat
+// the interior texel the octahedral wrap puts next to them, so bilinear lookups never bleed
+// into another probe. The caller blends the result into the atlas with the probe's running-mean weight.
 #include "chunks/octahedral.glsl"
 
 uniform highp sampler2D uCapture;
-uniform vec2 uCaptureOrigin;     // the probe's six faces, side by side from this texel
 uniform vec2 uTileOrigin;        // the tile's lower-left corner in the atlas, in pixels
 uniform vec3 uFaceForward[6];
 uniform vec3 uFaceRight[6];
@@ -38,8 +37,6 @@ void main() {
   }
   vec3 n = octDecode((vec2(s - 1) + 0.5) / float(INTERIOR) * 2.0 - 1.0);
   const int C = PN_PROBE_CAPTURE_SIZE;
-  int x0 = int(uCaptureOrigin.x);
-  int y0 = int(uCaptureOrigin.y);
 #if PN_PROBE_MAP == 2
   // The capture's texel in direction n: the face of its major axis, bilinear within the face.
   int face = 0;
@@ -54,8 +51,8 @@ void main() {
   vec2 st = vec2(dot(n, uFaceRight[face]), dot(n, uFaceUp[face])) / best;
   vec2 texel = clamp((st * 0.5 + 0.5) * float(C), vec2(0.5), vec2(float(C) - 0.5));
   vec2 size = vec2(textureSize(uCapture, 0));
-  vec4 L = textureLod(uCapture, (vec2(float(x0 + face * C), float(y0)) + texel) / size, 0.0);
-  float far = texelFetch(uCapture, ivec2(x0 + face * C, y0) + ivec2(texel), 0).a;
+  vec4 L = textureLod(uCapture, (vec2(float(face * C), 0.0) + texel) / size, 0.0);
+  float far = texelFetch(uCapture, ivec2(face * C, 0) + ivec2(texel), 0).a;
   bool finite = all(lessThan(abs(L.rgb), vec3(1e30)));
   fragColor = vec4(finite ? L.rgb : vec3(0.0), abs(far) < 3.5 ? 1.0 : 0.0);
 #elif PN_PROBE_MAP == 1
@@ -76,7 +73,7 @@ void main() {
         float c = dot(n, d) * inversesqrt(len2);
         if (c <= 0.0) continue;
         float w = pow(c, 64.0) / (len2 * sqrt(len2));
-        vec2 uv = (vec2(float(x0 + face * C), float(y0)) + vec2(x, y) * 2.0 + 1.0) / size;
+        vec2 uv = (vec2(float(face * C), 0.0) + vec2(x, y) * 2.0 + 1.0) / size;
         float r = abs(textureLod(uCapture, uv, 0.0).a);
         if (!(r < 1e30)) continue;  // non-finite: a bad light must not poison the volume
         moments += w * vec2(r, r * r);
@@ -100,7 +97,7 @@ void main() {
         vec3 d = uFaceForward[face] + st.x * uFaceRight[face] + st.y * uFaceUp[face];
         float len2 = dot(d, d);
         float dw = (4.0 / float(H * H)) / (len2 * sqrt(len2));
-        vec4 L = textureLod(uCapture, (vec2(float(x0 + face * C), float(y0)) + vec2(x, y) * 2.0 + 1.0) / size, 0.0);
+        vec4 L = textureLod(uCapture, (vec2(float(face * C), 0.0) + vec2(x, y) * 2.0 + 1.0) / size, 0.0);
         // Non-finite radiance (a light with a NaN intensity) is skipped, as the accumulation
         // drops such samples.
         if (!all(lessThan(abs(L.rgb), vec3(1e30)))) continue;

@@ -10,6 +10,15 @@
 #include "passes/scene_draw.h"
 
 namespace penumbra::passes {
+namespace {
+
+// The environment turns by +angle about Y: look up directions turned by -angle.
+glm::mat3 environmentLookup(const RenderSettings& s) {
+  return glm::mat3(
+      glm::rotate(glm::mat4(1.0f), glm::radians(-s.environmentRotation), glm::vec3(0, 1, 0)));
+}
+
+}  // namespace
 
 Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   LightingPass pass;
@@ -167,22 +176,27 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
 }
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only
-// uncovered pixels pay for it.
-void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
-  if (!b.settings->showBackground) return;
+// uncovered pixels pay for it. `alpha` is 1, or a probe capture's distance for the sky.
+void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
+                                  const CameraMatrices& camera, float blur, float alpha) {
   const gl::Program& bg = background_->begin(/*depthTest=*/true);
   b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
-  bg.set("uInvViewProj", glm::inverse(b.camera->projection * b.camera->view));
-  bg.set("uBackgroundBlur", b.settings->backgroundBlur);
-  bg.set("uBackgroundAlpha", 1.0f);
+  bg.set("uInvViewProj", glm::inverse(camera.projection * camera.view));
+  bg.set("uBackgroundBlur", blur);
+  bg.set("uBackgroundAlpha", alpha);
   background_->draw();
+}
+
+void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
+  if (b.settings->showBackground) {
+    drawBackground(b, envRotation, *b.camera, b.settings->backgroundBlur, 1.0f);
+  }
 }
 
 Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<CaptureView>& views,
                                  float skyDistance) {
   if (!b.scene || views.empty()) return {};
-  const glm::mat3 envRotation(glm::rotate(
-      glm::mat4(1.0f), glm::radians(-b.settings->environmentRotation), glm::vec3(0, 1, 0)));
+  const glm::mat3 envRotation = environmentLookup(*b.settings);
   const gl::Program& p = *captureVariants_[(b.area.empty() ? 0 : 1) | (b.punctual.empty() ? 0 : 2)];
   setUniforms(p, b, envRotation);
   gl::PipelineState state;
@@ -200,22 +214,14 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
     if (b.coverageFrame >= 0) drawItemsBothSides(p, *b.scene, b.scene->blended(), state);
     if (b.first) {
       // The sky, wherever the probe sees no geometry (whether or not the view shows it).
-      const gl::Program& bg = background_->begin(/*depthTest=*/true);
-      b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity,
-                          envRotation);
-      bg.set("uInvViewProj", glm::inverse(view.camera.projection * view.camera.view));
-      bg.set("uBackgroundBlur", 0.0f);
-      bg.set("uBackgroundAlpha", skyDistance);
-      background_->draw();
+      drawBackground(b, envRotation, view.camera, 0.0f, skyDistance);
     }
   }
   return {};
 }
 
 Status LightingPass::draw(const LightingBatch& b) {
-  // The environment turns by +angle about Y: look up directions turned by -angle.
-  const glm::mat3 envRotation(glm::rotate(
-      glm::mat4(1.0f), glm::radians(-b.settings->environmentRotation), glm::vec3(0, 1, 0)));
+  const glm::mat3 envRotation = environmentLookup(*b.settings);
   b.targets->frame.framebuffer.bind();
   gl::setViewport(0, 0, b.targets->width, b.targets->height);
   if (b.first) {

@@ -91,6 +91,8 @@ class LightingPass {
   }
   void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
+  void drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
+                      const CameraMatrices& camera, float blur, float alpha);
 
   gl::Program* variants_[8] = {};
   gl::Program* captureVariants_[4] = {};  // area | punctual << 1

@@ -12,7 +12,6 @@ namespace penumbra::passes {
 namespace {
 
 constexpr int kC = kProbeCaptureSize;
-constexpr int kSlotsPerRow = 8;  // probe captures side by side in the capture target
 constexpr int kLightMapSize = 512;
 // Cube faces: forward and up of each 90-degree view; right = forward x up (glm::lookAt's).
 const std::array<glm::vec3, 6> kForward = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
@@ -119,13 +118,12 @@ void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
   p.set("uProbeColumns", grid_.columns());
 }
 
-Status ProbeVolume::ensureCaptureTarget(int probes) {
-  if (probes <= captureSlots_) return {};
-  const int w = 6 * kC * std::min(probes, kSlotsPerRow);
-  const int h = kC * ((probes + kSlotsPerRow - 1) / kSlotsPerRow);
-  auto tex = atlas(w, h);
+// The capture target: one probe's six faces side by side, made on first use.
+Status ProbeVolume::ensureCaptureTarget() {
+  if (capture_) return {};
+  auto tex = atlas(6 * kC, kC);
   if (!tex) return makeError("probe capture target: " + tex.message());
-  auto rb = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
+  auto rb = gl::Renderbuffer::create(6 * kC, kC, gl::PixelFormat::Depth24);
   if (!rb) return makeError("probe capture target: " + rb.message());
   capture_ = std::move(*tex);
   captureDepth_ = std::move(*rb);
@@ -133,9 +131,7 @@ Status ProbeVolume::ensureCaptureTarget(int probes) {
   captureFb_.attachColor(0, capture_);
   captureFb_.attachDepth(captureDepth_);
   captureFb_.setDrawBuffers(1);
-  PN_TRY(captureFb_.checkComplete());
-  captureSlots_ = probes;
-  return {};
+  return captureFb_.checkComplete();
 }
 
 // One shadow map per shadowed light (area lights first, then spot and directional ones, so a
@@ -167,27 +163,18 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
     ShadowPass& pass = lightMaps_[static_cast<size_t>(j / kMaxShadowMaps)];
     const int slot = j % kMaxShadowMaps;
     const int coverage = static_cast<int>(captures_ % 65536);
-    if (l.isArea()) {
-      lightViews_[static_cast<size_t>(j)] =
-          pass.render(slot, *in.scene, cl.origin, l.direction, l.up, coverage, stream + j);
-    } else if (l.type == LightType::Directional) {
-      lightViews_[static_cast<size_t>(j)] = pass.render(
-          slot, *in.scene, fitDirectionalShadowView(cl.direction, in.scene->bounds(), pass.size()),
-          coverage, stream + j);
-    } else {
-      lightViews_[static_cast<size_t>(j)] =
-          pass.render(slot, *in.scene, l.position, l.direction, l.up, coverage, stream + j);
-    }
+    lightViews_[static_cast<size_t>(j)] =
+        pass.renderLight(slot, *in.scene, l, cl.origin, cl.direction, coverage, stream + j);
     lightDirection_[static_cast<size_t>(j)] = cl.direction;
   }
   lightMapsValid_ = true;
   return {};
 }
 
-Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in, int count) {
-  if (!active() || !in.scene || count <= 0) return {};
-  const std::vector<int> probes = progressive::probesForCapture(grid_, captures_, count);
-  PN_TRY(ensureCaptureTarget(static_cast<int>(probes.size())));
+Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in) {
+  if (!active() || !in.scene) return {};
+  const int probe = progressive::probesForCapture(grid_, captures_, 1).front();
+  PN_TRY(ensureCaptureTarget());
   PN_TRY(renderLightMaps(in));
 
   // The lights in batches of one shadow pass each; point lights (their cube maps) and
@@ -195,7 +182,6 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   const int shadowed = static_cast<int>(lightIndex_.size());
   const int batches = std::max(1, (shadowed + kMaxShadowMaps - 1) / kMaxShadowMaps);
   std::vector<LightingBatch> list(static_cast<size_t>(batches));
-  std::vector<CameraMatrices> cams;
   for (int b = 0; b < batches; ++b) {
     LightingBatch& batch = list[static_cast<size_t>(b)];
     batch.targets = in.targets;
@@ -241,26 +227,21 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
     }
   }
 
-  // Six 90-degree views per probe.
+  // Six 90-degree views.
   const float diag = grid_.diagonal;
   const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * diag, 4.0f * diag);
+  const glm::vec3 p = grid_.position(probe);
   std::vector<CaptureView> views;
-  for (size_t s = 0; s < probes.size(); ++s) {
-    const glm::vec3 p = grid_.position(probes[s]);
-    const int x0 = static_cast<int>(s % kSlotsPerRow) * 6 * kC;
-    const int y0 = static_cast<int>(s / kSlotsPerRow) * kC;
-    for (int f = 0; f < 6; ++f) {
-      CaptureView v;
-      v.camera.view =
-          glm::lookAt(p, p + kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
-      v.camera.projection = proj;
-      v.camera.position = p;
-      v.camera.viewOrigin = glm::vec4(p, 1.0f);
-      v.x = x0 + f * kC;
-      v.y = y0;
-      v.size = kC;
-      views.push_back(v);
-    }
+  for (int f = 0; f < 6; ++f) {
+    CaptureView v;
+    v.camera.view =
+        glm::lookAt(p, p + kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
+    v.camera.projection = proj;
+    v.camera.position = p;
+    v.camera.viewOrigin = glm::vec4(p, 1.0f);
+    v.x = f * kC;
+    v.size = kC;
+    views.push_back(v);
   }
   captureFb_.bind();
   gl::apply({});
@@ -273,39 +254,34 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
     PN_TRY(lighting.drawCapture(batch, views, 4.0f));
   }
 
-  // Project each probe onto its tiles, blended into the running means.
+  // Project the probe onto its tiles, blended into the running means.
   std::vector<glm::vec3> right(6);
   for (size_t f = 0; f < 6; ++f) right[f] = glm::cross(kForward[f], kUp[f]);
   for (int map = 0; map < 3; ++map) {
-    const gl::Program& p = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
+    const gl::Program& prog = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
     const int tile = (map == 0   ? kProbeIrradianceTexels
                       : map == 1 ? kProbeDepthTexels
                                  : kProbeRadianceTexels) +
                      2;
     (map == 0 ? irradianceFb_ : map == 1 ? depthFb_ : radianceFb_).bind();
-    p.use();
+    prog.use();
     capture_.bind(0);
-    p.set("uCapture", 0);
-    p.set("uFaceForward", std::span<const glm::vec3>(kForward));
-    p.set("uFaceRight", std::span<const glm::vec3>(right));
-    p.set("uFaceUp", std::span<const glm::vec3>(kUp));
-    for (size_t s = 0; s < probes.size(); ++s) {
-      const int probe = probes[s];
-      const int n = probeCaptures_[static_cast<size_t>(probe)] + 1;
-      gl::apply({.depthTest = gl::DepthTest::Off,
-                 .depthWrite = false,
-                 .blend = gl::Blend::ConstantMix,
-                 .cull = gl::Cull::None,
-                 .blendWeight = 1.0f / static_cast<float>(std::min(n, kHistory))});
-      const int tx = (probe % grid_.columns()) * tile, ty = (probe / grid_.columns()) * tile;
-      gl::setViewport(tx, ty, tile, tile);
-      p.set("uTileOrigin", glm::vec2(tx, ty));
-      p.set("uCaptureOrigin", glm::vec2(static_cast<float>((s % kSlotsPerRow) * 6 * kC),
-                                        static_cast<float>((s / kSlotsPerRow) * kC)));
-      quad_.draw(gl::Primitive::Triangles, 3);
-    }
+    prog.set("uCapture", 0);
+    prog.set("uFaceForward", std::span<const glm::vec3>(kForward));
+    prog.set("uFaceRight", std::span<const glm::vec3>(right));
+    prog.set("uFaceUp", std::span<const glm::vec3>(kUp));
+    const int n = probeCaptures_[static_cast<size_t>(probe)] + 1;
+    gl::apply({.depthTest = gl::DepthTest::Off,
+               .depthWrite = false,
+               .blend = gl::Blend::ConstantMix,
+               .cull = gl::Cull::None,
+               .blendWeight = 1.0f / static_cast<float>(std::min(n, kHistory))});
+    const int tx = (probe % grid_.columns()) * tile, ty = (probe / grid_.columns()) * tile;
+    gl::setViewport(tx, ty, tile, tile);
+    prog.set("uTileOrigin", glm::vec2(tx, ty));
+    quad_.draw(gl::Primitive::Triangles, 3);
   }
-  for (int probe : probes) ++probeCaptures_[static_cast<size_t>(probe)];
+  ++probeCaptures_[static_cast<size_t>(probe)];
   ++captures_;
   return {};
 }

@@ -1,6 +1,6 @@
 // ProbeVolume: world-space, multi-bounce indirect light that fills frame by frame (issue 14).
-// Irradiance probes on a progressive::ProbeGrid over the scene; each capture renders a few
-// probes' cube maps (PN_CAPTURE lighting: every light at full weight, shadowed by maps the
+// Irradiance probes on a progressive::ProbeGrid over the scene; each capture renders one
+// probe's cube map (PN_CAPTURE lighting: every light at full weight, shadowed by maps the
 // volume keeps one per light and re-renders from a new point on the light one per capture, the
 // environment where the probe sees sky, and what the volume already holds on every surface, so
 // repeated captures add bounces), and projects them onto octahedral tiles of three atlases:
@@ -69,14 +69,14 @@ class ProbeVolume {
   // Sets the probe uniforms and binds the atlases on a program in use; `enabled` false (or an
   // inactive volume) sets uProbeEnabled 0.
   void bind(const gl::Program& program, bool enabled) const;
-  // Captures the next `count` probes of the grid's order and blends them into the atlases;
-  // each call first re-renders one light's map from lightPoint().
-  Status capture(LightingPass& lighting, const ProbeCaptureInputs& in, int count);
+  // Captures the next probe of the grid's order and blends it into the atlases; each call
+  // first re-renders one light's map from lightPoint().
+  Status capture(LightingPass& lighting, const ProbeCaptureInputs& in);
   // Bytes of GPU memory the volume holds (atlases, capture target, shadow maps).
   int64_t memoryBytes() const;
 
  private:
-  Status ensureCaptureTarget(int probes);
+  Status ensureCaptureTarget();
   Status renderLightMaps(const ProbeCaptureInputs& in);
 
   progressive::ProbeGrid grid_;
@@ -89,7 +89,6 @@ class ProbeVolume {
   gl::Texture2D capture_;
   gl::Renderbuffer captureDepth_;
   gl::Framebuffer captureFb_;
-  int captureSlots_ = 0;
   std::vector<ShadowPass> lightMaps_;
   // Per shadowed light: its map's view (after the first capture), and how many it had.
   std::vector<ShadowView> lightViews_;

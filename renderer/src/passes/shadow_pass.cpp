@@ -120,6 +120,17 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& 
                 coverageFrame, coverageStream);
 }
 
+ShadowView ShadowPass::renderLight(int slot, const GpuScene& scene, const Light& light,
+                                   const glm::vec3& origin, const glm::vec3& direction,
+                                   int coverageFrame, int coverageStream) {
+  if (light.type == LightType::Directional) {
+    return render(slot, scene, fitDirectionalShadowView(direction, scene.bounds(), size_),
+                  coverageFrame, coverageStream);
+  }
+  const glm::vec3 from = light.isArea() ? origin : light.position;
+  return render(slot, scene, from, light.direction, light.up, coverageFrame, coverageStream);
+}
+
 ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView& sv,
                               int coverageFrame, int coverageStream) {
   const glm::mat4 bias = clipToTexture();

@@ -61,6 +61,12 @@ class ShadowPass {
   // Renders map `slot` for a view fitted by the caller (fitDirectionalShadowView).
   ShadowView render(int slot, const GpuScene& scene, const ShadowView& view, int coverageFrame,
                     int coverageStream);
+  // Renders map `slot` for one sample of a light: an area light's from `origin` (the sample's
+  // point on its surface), a directional light's along `direction` (its jittered direction of
+  // travel) over the scene's bounds, a spot light's from its position.
+  ShadowView renderLight(int slot, const GpuScene& scene, const Light& light,
+                         const glm::vec3& origin, const glm::vec3& direction, int coverageFrame,
+                         int coverageStream);
   int size() const { return size_; }
   // Binds the maps (one texture array, a layer per slot) to `unit` and sets uShadowMaps on a
   // program in use.

@@ -358,8 +358,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           const glm::vec3 origin = render::samplePosition(l, s.point);
           units.push_back([this, b, i, origin, shadowFrame, stream = ++shadowStream]() -> Status {
             passes::AreaSampleDraw& d = pending.batches[b].area[i];
-            d.view = shadows->render(static_cast<int>(i), *scene, origin, d.light->direction,
-                                     d.light->up, shadowFrame, stream);
+            d.view = shadows->renderLight(static_cast<int>(i), *scene, *d.light, origin,
+                                          d.light->direction, shadowFrame, stream);
             ++stats.shadowPasses;
             endPass(&stats.shadowMs);
             return {};
@@ -388,14 +388,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           pd.shadowSlot += firstSlot;
           units.push_back([this, j, shadowFrame, stream = ++shadowStream]() -> Status {
             passes::PunctualDraw& d = pending.batches[0].punctual[j];
-            const Light& l = *d.light;
-            d.view = l.type == LightType::Directional
-                         ? shadows->render(d.shadowSlot, *scene,
-                                           passes::fitDirectionalShadowView(
-                                               d.direction, scene->bounds(), shadows->size()),
-                                           shadowFrame, stream)
-                         : shadows->render(d.shadowSlot, *scene, l.position, l.direction, l.up,
-                                           shadowFrame, stream);
+            d.view = shadows->renderLight(d.shadowSlot, *scene, *d.light, d.light->position,
+                                          d.direction, shadowFrame, stream);
             ++stats.shadowPasses;
             endPass(&stats.shadowMs);
             return {};
@@ -449,7 +443,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
               .pointShadows = &*pointShadows,
               .settings = &settings,
               .targets = &*targets};
-          PN_TRY(probes->capture(*lighting, in, 1));
+          PN_TRY(probes->capture(*lighting, in));
           ++stats.probeCaptures;
           endPass(&stats.probeMs);
           return {};
