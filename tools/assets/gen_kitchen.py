@@ -140,21 +140,11 @@ def main(argv):
     table(meshes)
     small_objects(meshes)
 
-    nodes = []
-    for name, (base, metal, rough) in MATERIALS.items():
-        if meshes[name].idx:
-            mat = b.material(name, base, metallic=metal, roughness=rough)
-            mi = b.mesh(name, [b.primitive(meshes[name], mat)])
-            nodes.append(b.node(name, mesh=mi))
+    nodes = b.material_nodes(meshes, MATERIALS)
 
     for name, kind, size, aspect, color, intensity, pos, target in LIGHTS:
-        ext = b.area_light(name, kind, color, intensity, size, aspect)
-        lamp = b.material(name + "_surface", (0.0, 0.0, 0.0), emissive=color, strength=intensity)
-        pm = b.mesh(name + "_surface", [b.primitive(proxy_mesh(kind, size, aspect or 1.0), lamp)])
-        child = b.node(name + "_surface", mesh=pm,
-                       extras={"area_light_proxy": len(b.area_lights) - 1})
-        nodes.append(b.node(name, translation=pos, rotation=gb.quat_look(pos, target),
-                            extensions=ext, children=[child]))
+        nodes.append(b.lamp_node(name, kind, color, intensity, size, aspect,
+                                 proxy_mesh(kind, size, aspect or 1.0), pos, target))
 
     eye, target = (0.9, 1.55, 1.7), (-0.4, 0.95, -1.3)
     cam = b.camera("kitchen", math.radians(50.0), 16.0 / 9.0, 0.05, 50.0)

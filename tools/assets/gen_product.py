@@ -107,13 +107,8 @@ def main(argv):
     for name, kind, size, aspect, color, intensity, pos in (
             ("key", "rect", 0.5, 1.6, (1.0, 0.95, 0.9), 8.0, (-0.9, 1.1, 0.9)),
             ("fill", "disk", 0.6, None, (0.85, 0.9, 1.0), 3.0, (1.1, 0.6, 0.5))):
-        ext = b.area_light(name, kind, color, intensity, size, aspect)
-        lamp = b.material(name + "_surface", (0.0, 0.0, 0.0), emissive=color, strength=intensity)
-        pm = b.mesh(name + "_surface", [b.primitive(proxy_mesh(kind, size, aspect or 1.0), lamp)])
-        child = b.node(name + "_surface", mesh=pm,
-                       extras={"area_light_proxy": len(b.area_lights) - 1})
-        nodes.append(b.node(name, translation=pos, rotation=gb.quat_look(pos, target),
-                            extensions=ext, children=[child]))
+        nodes.append(b.lamp_node(name, kind, color, intensity, size, aspect,
+                                 proxy_mesh(kind, size, aspect or 1.0), pos, target))
 
     eye = (0.08, 0.36, 1.1)
     cam = b.camera("product", math.radians(32.0), 1.5, 0.02, 50.0)

@@ -113,21 +113,11 @@ def main(argv):
     table(meshes)
     cabinet(meshes)
 
-    nodes = []
-    for name, (base, metal, rough) in MATERIALS.items():
-        if meshes[name].idx:
-            mat = b.material(name, base, metallic=metal, roughness=rough)
-            mi = b.mesh(name, [b.primitive(meshes[name], mat)])
-            nodes.append(b.node(name, mesh=mi))
+    nodes = b.material_nodes(meshes, MATERIALS)
 
     for name, kind, size, aspect, color, intensity, pos, target in LIGHTS:
-        ext = b.area_light(name, kind, color, intensity, size, aspect)
-        lamp = b.material(name + "_surface", (0.0, 0.0, 0.0), emissive=color, strength=intensity)
-        pm = b.mesh(name + "_surface", [b.primitive(proxy_mesh(size, aspect), lamp)])
-        child = b.node(name + "_surface", mesh=pm,
-                       extras={"area_light_proxy": len(b.area_lights) - 1})
-        nodes.append(b.node(name, translation=pos, rotation=gb.quat_look(pos, target),
-                            extensions=ext, children=[child]))
+        nodes.append(b.lamp_node(name, kind, color, intensity, size, aspect,
+                                 proxy_mesh(size, aspect), pos, target))
 
     # Camera in the front right corner, looking toward the back left (window and table).
     eye, target = (150.0, 165.0, 235.0), (-60.0, 125.0, -120.0)

@@ -339,6 +339,28 @@ class GltfBuilder:
             persp["aspectRatio"] = num(aspect, 7)
         return self._push("cameras", {"name": name, "type": "perspective", "perspective": persp})
 
+    def material_nodes(self, meshes, materials):
+        """One node per non-empty MeshData of `meshes`, with the material `materials[name]` =
+        (base colour, metallic, roughness) of the same name. Returns the nodes."""
+        nodes = []
+        for name, (base, metal, rough) in materials.items():
+            if meshes[name].idx:
+                mat = self.material(name, base, metallic=metal, roughness=rough)
+                mi = self.mesh(name, [self.primitive(meshes[name], mat)])
+                nodes.append(self.node(name, mesh=mi))
+        return nodes
+
+    def lamp_node(self, name, kind, color, intensity, size, aspect, proxy, pos, target):
+        """An EXT_lights_area light at `pos` facing `target`, with its emissive stand-in `proxy`
+        (MeshData) as a child tagged extras.area_light_proxy. Returns the light's node."""
+        ext = self.area_light(name, kind, color, intensity, size, aspect)
+        lamp = self.material(name + "_surface", (0.0, 0.0, 0.0), emissive=color, strength=intensity)
+        pm = self.mesh(name + "_surface", [self.primitive(proxy, lamp)])
+        child = self.node(name + "_surface", mesh=pm,
+                          extras={"area_light_proxy": len(self.area_lights) - 1})
+        return self.node(name, translation=pos, rotation=quat_look(pos, target), extensions=ext,
+                         children=[child])
+
     def area_light(self, name, kind, color, intensity, size, aspect=None):
         """EXT_lights_area light (draft vendor extension, KhronosGroup/glTF PR 2525).
         Emits one-sided toward local -Z; `size` is the local-Y extent (rect) or
