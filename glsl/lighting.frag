@@ -7,6 +7,8 @@
 //   PN_PUNCTUAL   KHR_lights_punctual lights
 //   PN_CAPTURE    a probe's cube capture (passes/probe_volume.h): diffuse light only, alpha the
 //                 signed distance to the probe
+//   PN_PROBE_CACHE_WRITE  the per-view cache of the probe volume's lookups (passes/lighting_pass.h):
+//                 no light, only what probeIrradiance() returns for the pixel, every few frames
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
@@ -49,13 +51,73 @@ uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction
 
 #if PN_CAPTURE
 uniform int uSingleSided;  // the material is not double-sided: its back faces are walls' insides
+uniform int uCaptureFaceSize;  // texels: face i is the square at x = i * size of the strip
+flat in int vFace;
 #endif
 
+#if PN_PROBE_CACHE_WRITE
+uniform mat4 uView;
+layout(location = 0) out vec4 cacheIrradiance;  // rgb irradiance, a +-depth key (- : no probes)
+layout(location = 1) out vec4 cacheRoom;        // the room's radiance toward r, and its share
+vec4 fragColor;                                 // unused here
+#else
 out vec4 fragColor;
+#endif
+
+#if PN_OCCLUSION
+// The per-view cache: a still view's probe lookups change only as the volume fills, so they
+// are made every few frames by the PN_PROBE_CACHE_WRITE variant and read back in between. The
+// key (linear view depth over the volume's diagonal) finds the right texel where the frame's
+// jittered sample lands on another surface than the cached one (silhouettes): of the pixel and
+// its four neighbours, the best match. No lookup falls back to the probes: a software
+// rasterizer would run that code for every pixel (it skips only branches on uniforms).
+uniform int uProbeCacheValid;
+uniform sampler2D uProbeCache;
+uniform sampler2D uProbeCacheRoom;
+
+void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  ivec2 last = textureSize(uProbeCache, 0) - 1;
+  vec4 best = texelFetch(uProbeCache, px, 0);
+  ivec2 bestPx = px;
+  float bestError = abs(abs(best.a) - key);
+  for (int i = 0; i < 4; ++i) {
+    ivec2 q = clamp(px + (i == 0 ? ivec2(1, 0) : i == 1 ? ivec2(-1, 0) : i == 2 ? ivec2(0, 1)
+                                                                              : ivec2(0, -1)),
+                    ivec2(0), last);
+    vec4 c = texelFetch(uProbeCache, q, 0);
+    float e = abs(abs(c.a) - key);
+    if (bestError > tolerance && e < bestError) {
+      best = c;
+      bestPx = q;
+      bestError = e;
+    }
+  }
+  pv = vec4(best.rgb, best.a > 0.0 ? 1.0 : 0.0);
+  room = texelFetch(uProbeCacheRoom, bestPx, 0);
+}
+#endif
+
+#if PN_OCCLUSION || PN_PROBE_CACHE_WRITE
+float probeCacheKey() {
+  return -(uView * vec4(vWorldPos, 1.0)).z / uProbeDiagonal;
+}
+#endif
 
 void main() {
   vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
+#if PN_OCCLUSION
+  // Derivatives before any early return. A jitter moves the sample by under a pixel in x and
+  // y: the key changes by at most fwidth, plus half-float rounding.
+  float cacheKey = probeCacheKey();
+  float cacheTolerance = 2.0 * fwidth(cacheKey) + 2e-3 * cacheKey;
+#endif
+#if PN_PROBE_CACHE_WRITE
+  cacheIrradiance = vec4(0.0);
+  cacheRoom = vec4(0.0);
+#endif
 #if PN_CAPTURE
+  if (int(gl_FragCoord.x) / uCaptureFaceSize != vFace) discard;  // another face's square
   // What the probe sees, and how far (in the volume's diagonals; back faces negative, black:
   // a probe that sees mostly those is buried in geometry).
   float probeDistance = length(uViewOrigin.xyz - vWorldPos) / uProbeDiagonal;
@@ -94,6 +156,20 @@ void main() {
   f0 = vec3(0.0);
   f90 = 0.0;
   specularScale = vec3(0.0);
+#endif
+#if PN_PROBE_CACHE_WRITE
+  {
+    // The same lookup the shading below makes (the room's radiance wherever the specular layer
+    // shows enough of it: whether this frame's specular ray hits is decided when reading).
+    float showsRoom = max(specularScale.r, max(specularScale.g, specularScale.b)) *
+                      (1.0 - s.perceptualRoughness);
+    vec4 room;
+    vec4 pv = probeIrradiance(vWorldPos, n, v, reflect(-v, n), showsRoom > 0.01, room);
+    float key = probeCacheKey();
+    cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
+    cacheRoom = room;
+    return;
+  }
 #endif
 
   // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on the geometric normal
@@ -170,9 +246,17 @@ void main() {
 #else
     bool glossy = false;
 #endif
+    vec4 room = vec4(0.0);
+    vec4 pv = vec4(0.0);
+#if PN_OCCLUSION
+    if (uProbeCacheValid != 0) {
+      probeCacheRead(cacheKey, cacheTolerance, pv, room);
+    } else
+#endif
     if (uProbeEnabled != 0 && (!diffuseHit || glossy)) {
-      vec4 room;
-      vec4 pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
+      pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
+    }
+    if (uProbeEnabled != 0) {
 #if PN_CAPTURE
       // Captures build on what the volume holds, nothing else: each adds a bounce.
       irradiance = pv.rgb;

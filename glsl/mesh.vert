@@ -17,6 +17,13 @@ out vec4 vTangent;
 out vec2 vUv0;
 out vec2 vUv1;
 out vec4 vColor;
+#if defined(PN_CAPTURE) && PN_CAPTURE
+// A probe capture draws each item once for all six cube faces (instance i: face i), side by
+// side in one strip: one draw call instead of six, which is what a capture costs on a
+// software rasterizer. The fragment shader drops what spills into a neighbour's square.
+uniform mat4 uFaceViewProj[6];
+flat out int vFace;
+#endif
 // The lighting pass may draw over a depth-only pass of the same geometry with LEQUAL: the
 // positions must come out bit-identical in both programs.
 invariant gl_Position;
@@ -29,5 +36,13 @@ void main() {
   vUv0 = aUv0;
   vUv1 = aUv1;
   vColor = aColor;
+#if defined(PN_CAPTURE) && PN_CAPTURE
+  vFace = gl_InstanceID;
+  vec4 clip = uFaceViewProj[gl_InstanceID] * world;
+  // Face i's square is x in [-1 + 2i/6, -1 + 2(i+1)/6] of the strip's normalized coordinates.
+  clip.x = clip.x / 6.0 + clip.w * ((2.0 * float(gl_InstanceID) + 1.0) / 6.0 - 1.0);
+  gl_Position = clip;
+#else
   gl_Position = uViewProj * world;
+#endif
 }

@@ -15,14 +15,16 @@ uniform vec3 uProbeSpacing;
 uniform vec3 uProbeCounts;  // whole numbers
 uniform float uProbeDiagonal;
 uniform int uProbeColumns;
-uniform sampler2D uProbeIrradiance;
-uniform sampler2D uProbeDepth;
-uniform sampler2D uProbeRadiance;
+uniform int uProbeRows;
+// The three maps in one texture (passes/probe_volume.h, atlasLayout): radiance tiles at the
+// origin, depth tiles to their right, irradiance tiles above the depth tiles.
+uniform sampler2D uProbeAtlas;
 
-// The atlas position of direction `oct` (octEncode's) in a probe's tile.
-vec2 probeAtlasUv(int probe, vec2 oct, float interior, vec2 atlasSize) {
+// The atlas position of direction `oct` (octEncode's) in a probe's tile of the map whose tiles
+// have `interior` texels inside a one-texel border and start at `origin`.
+vec2 probeAtlasUv(int probe, vec2 oct, float interior, vec2 origin, vec2 atlasSize) {
   float tile = interior + 2.0;
-  vec2 corner = vec2(float(probe % uProbeColumns), float(probe / uProbeColumns)) * tile;
+  vec2 corner = origin + vec2(float(probe % uProbeColumns), float(probe / uProbeColumns)) * tile;
   return (corner + 1.0 + (oct * 0.5 + 0.5) * interior) / atlasSize;
 }
 
@@ -34,9 +36,10 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
   // n and r are the same for every probe: encode them once.
   vec2 octN = octEncode(n);
   vec2 octR = octEncode(r);
-  vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0));
-  vec2 depthSize = vec2(textureSize(uProbeDepth, 0));
-  vec2 radSize = vec2(textureSize(uProbeRadiance, 0));
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
+  const float radianceTile = float(PN_PROBE_RADIANCE_TEXELS + 2);
+  vec2 depthOrigin = vec2(float(uProbeColumns) * radianceTile, 0.0);
+  vec2 irrOrigin = depthOrigin + vec2(0.0, float(uProbeRows * (PN_PROBE_DEPTH_TEXELS + 2)));
   vec4 radSum = vec4(0.0);
   float minSpacing = min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
   // Off the surface, mostly toward the viewer: the lookup must not start inside the wall.
@@ -76,9 +79,9 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     float w = back * back + 0.05;
     vec3 fromProbe = q - probePos;
     float dist = length(fromProbe);
-    vec2 m = texture(uProbeDepth,
+    vec2 m = texture(uProbeAtlas,
                      probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
-                                  float(PN_PROBE_DEPTH_TEXELS), depthSize)).rg;
+                                  float(PN_PROBE_DEPTH_TEXELS), depthOrigin, atlasSize)).rg;
     float d = dist / uProbeDiagonal;
     if (d > m.x) {
       float variance = abs(m.y - m.x * m.x);
@@ -89,8 +92,8 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     w = max(w, 1e-5);
     // Crush small weights: a barely visible probe should not tint the result.
     if (w < 0.2) w *= w * w * 25.0;
-    vec4 irr = texture(uProbeIrradiance,
-                       probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS), irrSize));
+    vec4 irr = texture(uProbeAtlas, probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
+                                                 irrOrigin, atlasSize));
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
     w *= tri * valid;
     coverage += tri * valid;
@@ -98,8 +101,8 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     weightSum += w;
 #if !PN_CAPTURE
     if (glossy) {
-      vec4 rad = texture(uProbeRadiance,
-                         probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS), radSize));
+      vec4 rad = texture(uProbeAtlas, probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS),
+                                                   vec2(0.0), atlasSize));
       radSum += (w * rad.a) * vec4(rad.rgb, 1.0);
     }
 #endif

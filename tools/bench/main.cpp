@@ -47,7 +47,8 @@ struct Row {
   int lightingPasses = 0;
 };
 
-Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown) {
+Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
+                bool probeCache) {
   JobRequest request;
   request.scenePath = sceneFile;
   request.settings = {{"width", std::to_string(w)},
@@ -56,7 +57,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   auto job = RenderJob::load(request);
   if (!job) return job.error();
   const Scene* scene = &job->scene;
-  auto r = Renderer::create({.profilePasses = breakdown});
+  auto r = Renderer::create({.profilePasses = breakdown, .probeCache = probeCache});
   if (!r) return r.error();
   PN_TRY(job->applyTo(**r));
   // Warm-up: one full run compiles every program and touches every target.
@@ -126,6 +127,9 @@ int main(int argc, char** argv) {
   bool breakdown = false;
   app.add_flag("--breakdown", breakdown,
                "also time every pass (waits for the GPU after each, so totals grow a little)");
+  bool noProbeCache = false;
+  app.add_flag("--no-probe-cache", noProbeCache,
+               "look the probe volume up every frame (A/B against its per-view cache)");
   CLI11_PARSE(app, argc, argv);
 
   auto ctx = GlContext::create();
@@ -145,7 +149,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "penumbra-bench: error: bad size '%s'\n", size.c_str());
         return 1;
       }
-      auto row = run(scene, w, h, frames, breakdown);
+      auto row = run(scene, w, h, frames, breakdown, !noProbeCache);
       if (!row) {
         std::fprintf(stderr, "penumbra-bench: error: %s\n", row.message().c_str());
         return 1;

@@ -28,6 +28,9 @@ struct RendererOptions {
   // For a host's context (GlContext::adoptCurrent): every call that touches GL saves the GL
   // state it changes and restores it before returning (docs/embedding.md lists what is kept).
   bool preserveHostState = false;
+  // Caches the probe volume's per-pixel lookups for a still view, remade every few frames once
+  // the volume has filled (off: every frame looks the probes up; for A/B runs and tests).
+  bool probeCache = true;
 };
 
 // Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob
@@ -62,8 +65,9 @@ struct FrameStats {
   bool occlusion = false;
   // Milliseconds per pass, filled only with RendererOptions::profilePasses.
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0;
-  int probeCaptures = 0;  // probes of the probe volume captured in this frame
-  double probeMs = 0;     // their time (with profilePasses)
+  int probeCaptures = 0;           // probes of the probe volume captured in this frame
+  double probeMs = 0;              // their time (with profilePasses)
+  bool probeCacheWritten = false;  // the per-view cache of the volume's lookups was remade
 };
 
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).

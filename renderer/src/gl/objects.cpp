@@ -144,6 +144,15 @@ void VertexArray::draw(Primitive mode, int count, size_t firstOrByteOffset) cons
   }
 }
 
+void VertexArray::drawInstanced(Primitive mode, int count, int instances) const {
+  bind();
+  if (indexed_) {
+    glDrawElementsInstanced(glPrimitive(mode), count, glIndexType(indexType_), nullptr, instances);
+  } else {
+    glDrawArraysInstanced(glPrimitive(mode), 0, count, instances);
+  }
+}
+
 // --- Renderbuffer -------------------------------------------------------------------------
 
 Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat format) {

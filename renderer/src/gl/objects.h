@@ -55,6 +55,8 @@ class VertexArray {
   void bind() const;
   // Draws with the bound program: indexed when an index buffer is set, else arrays.
   void draw(Primitive mode, int count, size_t firstOrByteOffset = 0) const;
+  // The same, `instances` times (gl_InstanceID 0..instances-1).
+  void drawInstanced(Primitive mode, int count, int instances) const;
   GLuint id() const { return handle_.id(); }
 
  private:

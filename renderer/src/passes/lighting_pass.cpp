@@ -28,7 +28,8 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
                              {{"PN_OCCLUSION", (v & 1) ? "1" : "0"},
                               {"PN_AREA", (v & 2) ? "1" : "0"},
                               {"PN_PUNCTUAL", (v & 4) ? "1" : "0"},
-                              {"PN_CAPTURE", "0"}});
+                              {"PN_CAPTURE", "0"},
+                              {"PN_PROBE_CACHE_WRITE", "0"}});
     if (!p) return p.error();
     pass.variants_[v] = *p;
   }
@@ -37,10 +38,19 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
                              {{"PN_OCCLUSION", "0"},
                               {"PN_AREA", (v & 1) ? "1" : "0"},
                               {"PN_PUNCTUAL", (v & 2) ? "1" : "0"},
-                              {"PN_CAPTURE", "1"}});
+                              {"PN_CAPTURE", "1"},
+                              {"PN_PROBE_CACHE_WRITE", "0"}});
     if (!p) return p.error();
     pass.captureVariants_[v] = *p;
   }
+  auto cache = library.program("mesh.vert", "lighting.frag",
+                               {{"PN_OCCLUSION", "0"},
+                                {"PN_AREA", "0"},
+                                {"PN_PUNCTUAL", "0"},
+                                {"PN_CAPTURE", "0"},
+                                {"PN_PROBE_CACHE_WRITE", "1"}});
+  if (!cache) return cache.error();
+  pass.cacheWrite_ = *cache;
   auto depth = library.program("mesh.vert", "prepass.frag");
   if (!depth) return depth.error();
   pass.depthOnly_ = *depth;
@@ -85,13 +95,15 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     b.probes->bind(p, true);
   } else {
     p.set("uProbeEnabled", 0);
-    dummy_.bind(kUnitProbeIrradiance);
-    dummy_.bind(kUnitProbeDepth);
-    dummy_.bind(kUnitProbeRadiance);
-    p.set("uProbeIrradiance", kUnitProbeIrradiance);
-    p.set("uProbeDepth", kUnitProbeDepth);
-    p.set("uProbeRadiance", kUnitProbeRadiance);
+    dummy_.bind(kUnitProbeAtlas);
+    p.set("uProbeAtlas", kUnitProbeAtlas);
   }
+  const bool readCache = b.readProbeCache && b.probes && b.targets->probeCache.color;
+  p.set("uProbeCacheValid", readCache ? 1 : 0);
+  (readCache ? b.targets->probeCache.color : dummy_).bind(kUnitProbeCache);
+  (readCache ? b.targets->probeCacheRoom : dummy_).bind(kUnitProbeCacheRoom);
+  p.set("uProbeCache", kUnitProbeCache);
+  p.set("uProbeCacheRoom", kUnitProbeCacheRoom);
 
   // This batch's area-light samples.
   std::vector<glm::vec3> pos, dir, right, up, radiance;
@@ -205,15 +217,27 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
     state.depthWrite = false;
     state.blend = gl::Blend::Additive;
   }
+  // All faces in one instanced draw per item over the whole strip (mesh.vert), then the sky
+  // face by face, wherever the probe sees no geometry (whether or not the view shows it).
+  PN_CHECK(views.size() == 6, "a capture has six faces");
+  std::vector<glm::mat4> faceViewProj;
   for (const CaptureView& view : views) {
-    gl::setViewport(view.x, view.y, view.size, view.size);
-    p.use();
-    p.set("uViewProj", view.camera.projection * view.camera.view);
-    p.set("uViewOrigin", view.camera.viewOrigin);
-    drawItemsBothSides(p, *b.scene, b.scene->opaque(), state);
-    if (b.coverageFrame >= 0) drawItemsBothSides(p, *b.scene, b.scene->blended(), state);
-    if (b.first) {
-      // The sky, wherever the probe sees no geometry (whether or not the view shows it).
+    PN_CHECK(view.x == static_cast<int>(faceViewProj.size()) * view.size && view.y == 0 &&
+                 view.size == views.front().size,
+             "capture faces are squares side by side");
+    faceViewProj.push_back(view.camera.projection * view.camera.view);
+  }
+  const int faceSize = views.front().size;
+  gl::setViewport(0, 0, 6 * faceSize, faceSize);
+  p.use();
+  p.set("uFaceViewProj", std::span<const glm::mat4>(faceViewProj));
+  p.set("uCaptureFaceSize", faceSize);
+  p.set("uViewOrigin", views.front().camera.viewOrigin);
+  drawItemsBothSides(p, *b.scene, b.scene->opaque(), state, 6);
+  if (b.coverageFrame >= 0) drawItemsBothSides(p, *b.scene, b.scene->blended(), state, 6);
+  if (b.first) {
+    for (const CaptureView& view : views) {
+      gl::setViewport(view.x, view.y, view.size, view.size);
       drawBackground(b, envRotation, view.camera, 0.0f, skyDistance);
     }
   }
@@ -247,6 +271,24 @@ Status LightingPass::draw(const LightingBatch& b) {
     drawItems(dp, *b.scene, b.scene->opaque(), true, {.colorWrite = false});
     if (b.coverageFrame >= 0)
       drawItems(dp, *b.scene, b.scene->blended(), true, {.colorWrite = false});
+  }
+  if (b.writeProbeCache && b.probes) {
+    // The volume's lookups for this view, where this frame's depth pass left the surfaces.
+    PN_TRY(b.targets->ensureProbeCache());
+    b.targets->probeCache.framebuffer.bind();
+    gl::apply({.depthWrite = false});  // the depth pass left colour writes off
+    gl::clearBufferFloat(0, 0, 0, 0, 0);
+    gl::clearBufferFloat(1, 0, 0, 0, 0);
+    LightingBatch writing = b;
+    writing.readProbeCache = false;  // the targets being written are not sampled
+    const gl::Program& cw = *cacheWrite_;
+    setUniforms(cw, writing, envRotation);
+    gl::PipelineState cacheState;
+    cacheState.depthTest = gl::DepthTest::LessEqual;
+    cacheState.depthWrite = false;
+    drawItems(cw, *b.scene, b.scene->opaque(), true, cacheState);
+    if (b.coverageFrame >= 0) drawItems(cw, *b.scene, b.scene->blended(), true, cacheState);
+    b.targets->frame.framebuffer.bind();
   }
   const gl::Program& p = *variant(b.occlusion, !b.area.empty(), !b.punctual.empty());
   setUniforms(p, b, envRotation);

@@ -67,6 +67,10 @@ struct LightingBatch {
   std::vector<PunctualDraw> punctual;
   // The probe volume (null or inactive: diffuse environment light as before).
   const ProbeVolume* probes = nullptr;
+  // The per-view cache of the volume's lookups (targets->probeCache; first batch with
+  // occlusion only): remake it before shading, and read it.
+  bool writeProbeCache = false;
+  bool readProbeCache = false;
 };
 
 // One face of a probe capture: its camera and its square in the bound capture target.
@@ -79,9 +83,10 @@ class LightingPass {
  public:
   static Result<LightingPass> create(gl::ShaderLibrary& library);
   Status draw(const LightingBatch& batch);
-  // Draws a batch into the bound framebuffer once per view (the faces of probe captures) with
-  // the PN_CAPTURE variant: both faces of every surface, and where no geometry is, the
-  // environment with alpha `skyDistance` (first batch). Extra batches add their light.
+  // Draws a batch into the bound framebuffer for the six faces of a probe capture (squares
+  // side by side from x = 0, one instanced draw per item) with the PN_CAPTURE variant: both
+  // faces of every surface, and where no geometry is, the environment with alpha
+  // `skyDistance` (first batch). Extra batches add their light.
   Status drawCapture(const LightingBatch& batch, const std::vector<CaptureView>& views,
                      float skyDistance);
 
@@ -97,6 +102,7 @@ class LightingPass {
   gl::Program* variants_[8] = {};
   gl::Program* captureVariants_[4] = {};  // area | punctual << 1
   gl::Program* depthOnly_ = nullptr;
+  gl::Program* cacheWrite_ = nullptr;  // PN_PROBE_CACHE_WRITE
   std::optional<FullscreenPass> background_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
 };

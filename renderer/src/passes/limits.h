@@ -17,15 +17,16 @@ inline constexpr int kMaxPunctualLights = penumbra::kMaxPunctualLights;
 // Point lights with a cube shadow map (the first ones of the scene; the rest stay unshadowed).
 inline constexpr int kMaxPointShadows = 2;
 
-// Texture units: 0..4 material, then these. The shadow maps share one unit (a depth texture
-// array), which leaves units 13..15 free of WebGL2's guaranteed 16.
+// Texture units: 0..4 material, then these, within WebGL2's guaranteed 16. The shadow maps
+// share one unit (a depth texture array).
 inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
                      kUnitShadow = 9, kUnitPointShadow = kUnitShadow + 1;
-// The probe volume's three atlases (irradiance, depth moments, radiance).
-inline constexpr int kUnitProbeIrradiance = 13, kUnitProbeDepth = 14, kUnitProbeRadiance = 15;
-static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeIrradiance,
+// The probe volume's atlas (irradiance, depth moments and radiance in one texture), and the
+// per-view cache of its lookups (passes/lighting_pass.h).
+inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitProbeCacheRoom = 15;
+static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeAtlas,
               "the point shadows overlap the probe volume's units");
-static_assert(kUnitProbeRadiance < 16, "WebGL2 guarantees 16 texture units");
+static_assert(kUnitProbeCacheRoom < 16, "WebGL2 guarantees 16 texture units");
 
 // Probe volume: interior texels of a probe's octahedral irradiance, depth-moment and radiance
 // maps (each tile has a one-texel border), and the face size of a probe's cube capture.

@@ -30,6 +30,19 @@ Result<gl::Texture2D> atlas(int w, int h) {
 
 }  // namespace
 
+ProbeAtlasLayout atlasLayout(int columns, int rows) {
+  ProbeAtlasLayout l;
+  l.tile[0] = kProbeIrradianceTexels + 2;
+  l.tile[1] = kProbeDepthTexels + 2;
+  l.tile[2] = kProbeRadianceTexels + 2;
+  l.origin[2] = glm::ivec2(0);
+  l.origin[1] = glm::ivec2(columns * l.tile[2], 0);
+  l.origin[0] = glm::ivec2(columns * l.tile[2], rows * l.tile[1]);
+  l.size = glm::ivec2(columns * (l.tile[2] + std::max(l.tile[0], l.tile[1])),
+                      std::max(rows * l.tile[2], rows * (l.tile[1] + l.tile[0])));
+  return l;
+}
+
 Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
   ProbeVolume v;
   gl::Program** programs[3] = {&v.project_, &v.projectDepth_, &v.projectRadiance_};
@@ -50,27 +63,16 @@ Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
 
 Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
   grid_ = grid;
-  irradiance_ = {};
-  depth_ = {};
-  radiance_ = {};
+  atlas_ = {};
   if (grid_.empty()) return {};
-  const int cols = grid_.columns(), rows = grid_.rows();
-  struct Map {
-    gl::Texture2D* texture;
-    gl::Framebuffer* framebuffer;
-    int interior;
-  };
-  for (const Map& m : {Map{&irradiance_, &irradianceFb_, kProbeIrradianceTexels},
-                       Map{&depth_, &depthFb_, kProbeDepthTexels},
-                       Map{&radiance_, &radianceFb_, kProbeRadianceTexels}}) {
-    auto tex = atlas(cols * (m.interior + 2), rows * (m.interior + 2));
-    if (!tex) return makeError("probe volume: " + tex.message());
-    *m.texture = std::move(*tex);
-    *m.framebuffer = gl::Framebuffer::create();
-    m.framebuffer->attachColor(0, *m.texture);
-    m.framebuffer->setDrawBuffers(1);
-    PN_TRY(m.framebuffer->checkComplete());
-  }
+  const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
+  auto tex = atlas(layout.size.x, layout.size.y);
+  if (!tex) return makeError("probe volume: " + tex.message());
+  atlas_ = std::move(*tex);
+  atlasFb_ = gl::Framebuffer::create();
+  atlasFb_.attachColor(0, atlas_);
+  atlasFb_.setDrawBuffers(1);
+  PN_TRY(atlasFb_.checkComplete());
   clear();
   return {};
 }
@@ -81,10 +83,8 @@ void ProbeVolume::clear() {
   probeCaptures_.assign(static_cast<size_t>(grid_.count()), 0);
   if (grid_.empty()) return;
   gl::apply({.depthTest = gl::DepthTest::Off, .depthWrite = false});
-  for (gl::Framebuffer* fb : {&irradianceFb_, &depthFb_, &radianceFb_}) {
-    fb->bind();
-    gl::clearBufferFloat(0, 0, 0, 0, 0);
-  }
+  atlasFb_.bind();
+  gl::clearBufferFloat(0, 0, 0, 0, 0);
 }
 
 double ProbeVolume::meanCaptures() const {
@@ -104,18 +104,15 @@ glm::vec2 ProbeVolume::lightPoint(uint32_t seed) const {
 void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
   const bool on = enabled && active();
   p.set("uProbeEnabled", on ? 1 : 0);
-  p.set("uProbeIrradiance", kUnitProbeIrradiance);
-  p.set("uProbeDepth", kUnitProbeDepth);
-  p.set("uProbeRadiance", kUnitProbeRadiance);
+  p.set("uProbeAtlas", kUnitProbeAtlas);
   if (!on) return;
-  irradiance_.bind(kUnitProbeIrradiance);
-  depth_.bind(kUnitProbeDepth);
-  radiance_.bind(kUnitProbeRadiance);
+  atlas_.bind(kUnitProbeAtlas);
   p.set("uProbeOrigin", grid_.origin);
   p.set("uProbeSpacing", grid_.spacing);
   p.set("uProbeCounts", glm::vec3(grid_.counts));
   p.set("uProbeDiagonal", grid_.diagonal);
   p.set("uProbeColumns", grid_.columns());
+  p.set("uProbeRows", grid_.rows());
 }
 
 // The capture target: one probe's six faces side by side, made on first use.
@@ -257,13 +254,11 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   // Project the probe onto its tiles, blended into the running means.
   std::vector<glm::vec3> right(6);
   for (size_t f = 0; f < 6; ++f) right[f] = glm::cross(kForward[f], kUp[f]);
+  const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
+  atlasFb_.bind();
   for (int map = 0; map < 3; ++map) {
     const gl::Program& prog = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
-    const int tile = (map == 0   ? kProbeIrradianceTexels
-                      : map == 1 ? kProbeDepthTexels
-                                 : kProbeRadianceTexels) +
-                     2;
-    (map == 0 ? irradianceFb_ : map == 1 ? depthFb_ : radianceFb_).bind();
+    const int tile = layout.tile[map];
     prog.use();
     capture_.bind(0);
     prog.set("uCapture", 0);
@@ -276,7 +271,8 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
                .blend = gl::Blend::ConstantMix,
                .cull = gl::Cull::None,
                .blendWeight = 1.0f / static_cast<float>(std::min(n, kHistory))});
-    const int tx = (probe % grid_.columns()) * tile, ty = (probe / grid_.columns()) * tile;
+    const int tx = layout.origin[map].x + (probe % grid_.columns()) * tile;
+    const int ty = layout.origin[map].y + (probe / grid_.columns()) * tile;
     gl::setViewport(tx, ty, tile, tile);
     prog.set("uTileOrigin", glm::vec2(tx, ty));
     quad_.draw(gl::Primitive::Triangles, 3);
@@ -288,9 +284,7 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
 
 int64_t ProbeVolume::memoryBytes() const {
   int64_t bytes = 0;
-  if (irradiance_) bytes += int64_t{8} * irradiance_.width() * irradiance_.height();
-  if (depth_) bytes += int64_t{8} * depth_.width() * depth_.height();
-  if (radiance_) bytes += int64_t{8} * radiance_.width() * radiance_.height();
+  if (atlas_) bytes += int64_t{8} * atlas_.width() * atlas_.height();
   if (capture_) bytes += int64_t{12} * capture_.width() * capture_.height();
   bytes +=
       static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize * kLightMapSize;

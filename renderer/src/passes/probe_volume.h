@@ -3,9 +3,10 @@
 // probe's cube map (PN_CAPTURE lighting: every light at full weight, shadowed by maps the
 // volume keeps one per light and re-renders from a new point on the light one per capture, the
 // environment where the probe sees sky, and what the volume already holds on every surface, so
-// repeated captures add bounces), and projects them onto octahedral tiles of three atlases:
+// repeated captures add bounces), and projects them onto octahedral tiles of three maps:
 // irradiance, the mean and mean square distance for Chebyshev visibility, and the radiance the
-// probe sees (glossy reflections of the room where it sees geometry rather than sky). Each tile
+// probe sees (glossy reflections of the room where it sees geometry rather than sky). The three
+// share one atlas texture (one texture unit, one framebuffer), laid out by atlasLayout(). Each tile
 // keeps a running mean of its captures (constant-alpha blending in place, the weight 1/n capped so
 // the newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
 #pragma once
@@ -35,6 +36,16 @@ struct CaptureLight {
 
 // What a capture shades with: the scene's lights (and the environment's sun), the point-light
 // cube maps the frame uses, the settings and the targets (for LightingPass's bindings).
+// Where the three maps sit in the atlas: for `columns` x `rows` probes, the radiance tiles at
+// the origin, the depth tiles to their right, the irradiance tiles above those (so 4096 probes
+// fit in 2048 texels, WebGL2's guaranteed size). chunks/probe_volume.glsl computes the same.
+struct ProbeAtlasLayout {
+  glm::ivec2 size{0};
+  glm::ivec2 origin[3];  // irradiance, depth moments, radiance (PN_PROBE_MAP's order)
+  int tile[3] = {};      // tile size with its one-texel border
+};
+ProbeAtlasLayout atlasLayout(int columns, int rows);
+
 struct ProbeCaptureInputs {
   const GpuScene* scene = nullptr;
   const GpuEnvironment* environment = nullptr;
@@ -84,8 +95,8 @@ class ProbeVolume {
   gl::Program* projectDepth_ = nullptr;     // depth moments
   gl::Program* projectRadiance_ = nullptr;  // radiance
   gl::VertexArray quad_;
-  gl::Texture2D irradiance_, depth_, radiance_;
-  gl::Framebuffer irradianceFb_, depthFb_, radianceFb_;
+  gl::Texture2D atlas_;
+  gl::Framebuffer atlasFb_;
   gl::Texture2D capture_;
   gl::Renderbuffer captureDepth_;
   gl::Framebuffer captureFb_;

@@ -16,7 +16,8 @@ void drawItems(const gl::Program& program, const GpuScene& scene,
 }
 
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
-                        const std::vector<DrawItem>& items, gl::PipelineState state) {
+                        const std::vector<DrawItem>& items, gl::PipelineState state,
+                        int instances) {
   state.cull = gl::Cull::None;
   for (const DrawItem& item : items) {
     const Material& m = scene.material(item.material).source;
@@ -25,7 +26,8 @@ void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
     program.set("uSingleSided", m.doubleSided ? 0 : 1);
     GpuScene::bindTransform(program, item);
     scene.bindMaterial(program, item.material);
-    item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+    item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->indexCount,
+                                      instances);
   }
 }
 

@@ -26,6 +26,7 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
   t.width = w;
   t.height = h;
   t.format = format;
+  t.prepassFormat = prepassFormat;
   auto fd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
   if (!fd) return fd.error();
   t.frameDepth = std::move(*fd);
@@ -50,6 +51,24 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
   t.display = std::move(*disp);
   gl::Framebuffer::bindDefault();
   return t;
+}
+
+Status RenderTargets::ensureProbeCache() {
+  if (probeCache.color) return {};
+  auto cache = makeColor(width, height, prepassFormat, &frameDepth);
+  if (!cache) return makeError("probe cache target: " + cache.message());
+  auto room = gl::Texture2D::create(
+      {.width = width,
+       .height = height,
+       .format = prepassFormat,
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}});
+  if (!room) return makeError("probe cache target: " + room.message());
+  cache->framebuffer.attachColor(1, *room);
+  cache->framebuffer.setDrawBuffers(2);
+  PN_TRY(cache->framebuffer.checkComplete());
+  probeCache = std::move(*cache);
+  probeCacheRoom = std::move(*room);
+  return {};
 }
 
 }  // namespace penumbra::passes

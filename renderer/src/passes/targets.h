@@ -20,6 +20,7 @@ struct RenderTargets {
   int width = 0;
   int height = 0;
   gl::PixelFormat format = gl::PixelFormat::RGBA32F;
+  gl::PixelFormat prepassFormat = gl::PixelFormat::RGBA32F;  // also the probe cache's
   ColorTarget frame;  // this intermediate frame's radiance, with depth
   gl::Renderbuffer frameDepth;
   std::array<ColorTarget, 2> accumulation;
@@ -27,12 +28,20 @@ struct RenderTargets {
   ColorTarget prepass;  // view normal + linear depth
   gl::Renderbuffer prepassDepth;
   ColorTarget display;  // RGBA8, display-encoded
+  // The probe volume's per-view cache of its lookups (LightingPass), RGBA16F: irradiance with
+  // a depth key, and the room's radiance (prepassFormat: RGBA16F where renderable) (a second colour
+  // attachment of the same framebuffer). With the frame's depth, so only the pixels the frame
+  // shades are written. Made on first use.
+  ColorTarget probeCache;
+  gl::Texture2D probeCacheRoom;
 
   static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
                                       gl::PixelFormat prepassFormat);
   // After frame 1 the mean is frame 1 itself: the frame target becomes the mean by swapping
   // it with the other accumulation target (no accumulation pass), which becomes the frame
   // target. Every one of the three has the frame's depth attached, so any can be drawn into.
+  Status ensureProbeCache();
+
   void takeFrameAsMean() {
     std::swap(frame, accumulation[static_cast<size_t>(1 - current)]);
     current = 1 - current;

@@ -67,6 +67,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Camera camera;
   bool hasCamera = false;
   bool prepassValid = false;
+  int probeCacheFrame = -1;  // the frame that last wrote the probe cache (-1: none this view)
+  static constexpr int kProbeCacheInterval = 8;
   FrameStats stats;
   float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
   std::chrono::steady_clock::time_point passStart;
@@ -145,6 +147,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       if (!t) return t.error();
       targets.emplace(std::move(*t));
       prepassValid = false;
+      probeCacheFrame = -1;
     }
     if (shadowResize) {
       shadows.reset();
@@ -252,7 +255,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (plan.frame == 1) targets->current = 0;
     const Camera cam = activeCamera();
     pending.cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
-    if (plan.frame == 1) prepassValid = false;
+    if (plan.frame == 1) {
+      prepassValid = false;
+      probeCacheFrame = -1;
+    }
     auto& units = pending.units;
     const int k = pending.tiles;
     // BLEND surfaces cover the pixels differently each frame: the occlusion rays must see
@@ -280,6 +286,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     const bool occlusion = plan.occlusion && (drawPrepass || prepassValid);
     stats.occlusion = occlusion;
+    // The probe volume's per-view cache: remade every kProbeCacheInterval frames of a still
+    // view once the volume is filled (it changes slowly then), read in between; every other
+    // frame while it is young (a longer lag would show in the early images).
+    const bool probeCache = occlusion && probesOn() && options.probeCache;
+    const int cacheInterval = probes && probes->meanCaptures() >= 2.0 ? kProbeCacheInterval : 2;
+    const bool writeProbeCache =
+        probeCache && (probeCacheFrame < 0 || plan.frame < probeCacheFrame ||
+                       plan.frame - probeCacheFrame >= cacheInterval);
+    if (writeProbeCache) probeCacheFrame = plan.frame;
+    stats.probeCacheWritten = writeProbeCache;
     // Split this frame's light samples: area samples go in batches of up to kMaxShadowMaps.
     std::vector<const LightSample*> area;
     std::vector<passes::PunctualDraw> punctual;
@@ -337,7 +353,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
           // Occlusion only in the first batch: later ones add light.
           .occlusion = b == 0 && occlusion,
           .coverageFrame = cameraCoverageFrame(plan),
-          .probes = probesOn() ? &*probes : nullptr});
+          .probes = probesOn() ? &*probes : nullptr,
+          .writeProbeCache = b == 0 && writeProbeCache,
+          .readProbeCache = b == 0 && probeCache});
       passes::LightingBatch& batch = pending.batches.back();
       const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
       const size_t to = b == 0 ? firstBatch : from + kBatch;
