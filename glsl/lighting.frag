@@ -9,6 +9,8 @@
 //                 signed distance to the probe
 //   PN_PROBE_CACHE_WRITE  the per-view cache of the probe volume's lookups (passes/lighting_pass.h):
 //                 no light, only what probeIrradiance() returns for the pixel, every few frames
+//   PN_TRANSMISSION  1: a transmissive surface's own light (its diffuse base scaled by
+//                 1 - transmission); 2: composes that light with what it transmits
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
@@ -19,9 +21,15 @@
 #if PN_AREA || PN_PUNCTUAL
 #include "chunks/shadows.glsl"
 #endif
-#if PN_OCCLUSION
+// (The composer includes a file once, where it first appears: one #if per file.)
+#if PN_OCCLUSION || PN_TRANSMISSION == 2
 #include "chunks/sampling.glsl"
+#endif
+#if PN_OCCLUSION
 #include "chunks/occlusion.glsl"
+#endif
+#if PN_TRANSMISSION == 2
+#include "chunks/transmission.glsl"
 #endif
 
 // Limits shared with the C++ side (passes/limits.h), given as generated defines.
@@ -148,6 +156,13 @@ void main() {
   // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
   // white furnace reflects exactly the environment.
   diffuseColor *= vec3(1.0) - specularScale;
+#if PN_TRANSMISSION
+  // KHR_materials_transmission: of what the specular layer lets through, the share
+  // `transmission` passes through the surface (tinted by the base colour) instead of being
+  // diffused; it is added where the surfaces are composed (PN_TRANSMISSION 2).
+  vec3 transmitColor = diffuseColor * uTransmission;
+  diffuseColor -= transmitColor;
+#endif
 #if PN_CAPTURE
   // Probes store irradiance, so light leaves a captured surface view-independently: the
   // specular layer's directional albedo is reflected as if diffuse (energy kept, metals not
@@ -198,6 +213,17 @@ void main() {
   float sheenA = sheenAlpha(uSheenRoughness);
   float sheenE = sheenMax > 0.0 ? sheenAlbedo(NoV, uSheenRoughness) : 0.0;
   float sheenScale = 1.0 - sheenMax * sheenE;
+#if PN_TRANSMISSION == 2
+  // Under the coat and the sheen like the base; the surface's own light was drawn per batch.
+  // A smooth surface (at the shading's roughness floor) transmits without scattering: GGX's
+  // long tail at that floor would still throw a few samples pixels away.
+  float transmitAlpha = s.perceptualRoughness > MIN_PERCEPTUAL_ROUGHNESS ? alpha : 0.0;
+  vec3 own = texelFetch(uGlassLight, ivec2(gl_FragCoord.xy), 0).rgb;
+  fragColor = vec4(own + baseScale * sheenScale * transmitColor *
+                             transmittedRadiance(vWorldPos, n, v, transmitAlpha, uIor),
+                   1.0);
+  return;
+#endif
 
   vec3 color = vec3(0.0);
   // 1 while the diffuse environment term is the unoccluded E(n): a sky-shadow sample corrects

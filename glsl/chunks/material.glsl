@@ -20,6 +20,14 @@ uniform float uClearcoatRoughness;
 // KHR_materials_sheen (factors): colour (0 = no sheen) and perceptual roughness.
 uniform vec3 uSheenColor;
 uniform float uSheenRoughness;
+// KHR_materials_transmission and KHR_materials_volume (factors): the transmitted share of the
+// dielectric base, the volume's thickness (mesh units; 0 thin-walled), its index of refraction
+// and Beer-Lambert attenuation (distance 0: none).
+uniform float uTransmission;
+uniform float uThickness;
+uniform float uIor;
+uniform float uAttenuationDistance;
+uniform vec3 uAttenuationColor;
 uniform int uTextureMask;   // bit i: slot i has a texture
 uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
 uniform mat3 uUvTransform[5];

@@ -110,6 +110,13 @@ TEST_F(FrameSplitGLTest, BlendAndMaskFramesMatchTheWholeFrame) {
   expectSplitMatchesWhole(j, 4, "glass");
 }
 
+TEST_F(FrameSplitGLTest, TransmissiveFramesMatchTheWholeFrame) {
+  // Glass looks through a copy of the whole frame, made after every band's lighting: a ray
+  // refracted into another band sees that band's light of the same frame.
+  Job j = loadAsset("showroom/showroom.json", 48, 32, 6, {{"fd", "0.3"}});
+  expectSplitMatchesWhole(j, 3, "showroom");
+}
+
 TEST_F(FrameSplitGLTest, PunctualLightFramesMatchTheWholeFrame) {
   Scene s;
   s.materials = {lambert(glm::vec3(0.8f)), lambert(glm::vec3(0.5f))};

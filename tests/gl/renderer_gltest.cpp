@@ -169,6 +169,20 @@ TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
                             {.maxAbs = 0.08, .meanAbs = 0.004}, "material_grid_m16"));
 }
 
+TEST_F(RendererGLTest, ShowroomMatchesGolden) {
+  // Clearcoat, sheen, a solid glass ball (refraction, Beer-Lambert) and a frosted pane (rough
+  // thin-walled transmission) against high-contrast silhouettes.
+  Loaded l =
+      loadJob("showroom/showroom.json", {{"width", "120"}, {"height", "80"}, {"frames", "32"}},
+              {.faceSize = 32, .samples = 32});
+  auto r = makeRenderer(l);
+  runToEnd(*r);
+  auto img = r->readDisplay();
+  ASSERT_TRUE(img.ok());
+  EXPECT_TRUE(matchesGolden(*img, sourceDir() + "/tests/golden/showroom_m32.png",
+                            {.maxAbs = 0.1, .meanAbs = 0.004}, "showroom_m32"));
+}
+
 TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   Loaded l = loadCornell(32, 32);
   l.env = uniformEnvironment(glm::vec3(0.2f));  // a lit environment: the f_d delay applies

@@ -261,7 +261,9 @@ TEST(SceneGltfExtensions, RequiredUnknownExtensionIsAnError) {
 TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   GltfBuilder b;
   b.useExtension("EXT_fancy_thing");
+  b.useExtension("KHR_materials_anisotropy");
   b.useExtension("KHR_materials_transmission");
+  b.useExtension("KHR_materials_volume");
   b.useExtension("KHR_materials_sheen");
   b.useExtension("KHR_materials_clearcoat");
   b.useExtension("KHR_texture_transform");
@@ -269,7 +271,9 @@ TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   auto scene = b.load();
   ASSERT_TRUE(scene.ok()) << scene.message();
   EXPECT_TRUE(hasWarning(*scene, "uses unsupported extension EXT_fancy_thing"));
-  EXPECT_TRUE(hasWarning(*scene, "KHR_materials_transmission"));
+  EXPECT_TRUE(hasWarning(*scene, "uses KHR_materials_anisotropy, which is ignored"));
+  EXPECT_FALSE(hasWarning(*scene, "KHR_materials_transmission"));
+  EXPECT_FALSE(hasWarning(*scene, "KHR_materials_volume"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_clearcoat"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_sheen"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_texture_transform"));

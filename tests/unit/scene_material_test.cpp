@@ -246,6 +246,56 @@ TEST(SceneGltfMaterial, SheenExtension) {
   for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }
 
+TEST(SceneGltfMaterial, TransmissionAndVolumeExtensions) {
+  GltfBuilder b;
+  b.useExtension("KHR_materials_transmission");
+  b.useExtension("KHR_materials_volume");
+  auto ext = [&](json e) { b.push("materials", {{"extensions", e}}); };
+  ext(json::object());                                                 // 0: none
+  ext({{"KHR_materials_transmission", {{"transmissionFactor", 0.8}}},  // 1
+       {"KHR_materials_volume",
+        {{"thicknessFactor", 0.25},
+         {"attenuationDistance", 2.0},
+         {"attenuationColor", {0.9, 0.5, 0.2}}}}});
+  ext({{"KHR_materials_transmission",  // 2: clamped, textures, bad volume values
+        {{"transmissionFactor", 1.5}, {"transmissionTexture", {{"index", 0}}}}},
+       {"KHR_materials_volume",
+        {{"thicknessFactor", -1.0},
+         {"attenuationDistance", -3.0},
+         {"attenuationColor", {2.0, 0.5, -1.0}},
+         {"thicknessTexture", {{"index", 0}}}}}});
+  ext({{"KHR_materials_transmission", json::object()},  // 3: the extensions' defaults
+       {"KHR_materials_volume", json::object()}});
+  b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
+  b.push("textures", {{"source", 0}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const auto& m = scene->materials;
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_EQ(m[0].transmission, 0.0f);
+  EXPECT_EQ(m[0].thickness, 0.0f);
+  EXPECT_FLOAT_EQ(m[1].transmission, 0.8f);
+  EXPECT_FLOAT_EQ(m[1].thickness, 0.25f);
+  EXPECT_FLOAT_EQ(m[1].attenuationDistance, 2.0f);
+  EXPECT_EQ(m[1].attenuationColor, glm::vec3(0.9f, 0.5f, 0.2f));
+  EXPECT_FLOAT_EQ(m[2].transmission, 1.0f);
+  EXPECT_EQ(m[2].thickness, 0.0f);
+  EXPECT_EQ(m[2].attenuationDistance, 0.0f);
+  EXPECT_EQ(m[2].attenuationColor, glm::vec3(1.0f, 0.5f, 0.0f));
+  EXPECT_TRUE(hasWarning(*scene, "transmissionFactor: outside [0, 1]"));
+  EXPECT_TRUE(hasWarning(*scene, "transmissionTexture is not sampled"));
+  EXPECT_TRUE(hasWarning(*scene, "thicknessFactor: negative"));
+  EXPECT_TRUE(hasWarning(*scene, "attenuationDistance: not positive"));
+  EXPECT_TRUE(hasWarning(*scene, "attenuationColor: outside [0, 1]"));
+  EXPECT_TRUE(hasWarning(*scene, "thicknessTexture is not sampled"));
+  EXPECT_EQ(m[3].transmission, 0.0f);
+  EXPECT_EQ(m[3].thickness, 0.0f);
+  EXPECT_EQ(m[3].attenuationDistance, 0.0f);
+  EXPECT_EQ(m[3].attenuationColor, glm::vec3(1.0f));
+  for (const std::string& w : scene->warnings)
+    EXPECT_EQ(w.find("unsupported"), std::string::npos) << w;
+}
+
 TEST(SceneGltfMaterial, OversizedImagesAreHalvedUntilTheyFit) {
   GltfBuilder b;
   b.push("images", {{"uri", pngDataUri(8, 4, {1, 0.5f, 0, 1})}});

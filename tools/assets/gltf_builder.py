@@ -293,7 +293,10 @@ class GltfBuilder:
         return len(self.textures) - 1
 
     def material(self, name, base, metallic=0.0, roughness=1.0, emissive=None, strength=1.0,
-                 alpha=1.0, alpha_mode=None, double_sided=False, base_texture=None):
+                 alpha=1.0, alpha_mode=None, double_sided=False, base_texture=None,
+                 extensions=None):
+        """`extensions`: {"KHR_materials_x": {...}} added to the material (and to
+        extensionsUsed)."""
         pbr = {"baseColorFactor": nums(list(base) + [alpha]),
                "metallicFactor": num(metallic),
                "roughnessFactor": num(roughness)}
@@ -310,6 +313,9 @@ class GltfBuilder:
                 m["extensions"] = {"KHR_materials_emissive_strength":
                                    {"emissiveStrength": num(strength)}}
                 self.ext_used.add("KHR_materials_emissive_strength")
+        for key, value in (extensions or {}).items():
+            m.setdefault("extensions", {})[key] = value
+            self.ext_used.add(key)
         return self._push("materials", m)
 
     def mesh(self, name, prims):

@@ -90,6 +90,16 @@ struct Material {
   float clearcoatRoughness = 0.0f;
   glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (factors; textures ignored): 0 = no sheen
   float sheenRoughness = 0.0f;
+  // KHR_materials_transmission (factor): the share of the dielectric base's light that passes
+  // through the surface instead of being diffused. Such surfaces are drawn after the opaque
+  // ones and show what is behind them (renderer: "Transmission").
+  float transmission = 0.0f;
+  // KHR_materials_volume (factors): thickness in the mesh's units (0: thin-walled, no
+  // refraction), Beer-Lambert attenuation: attenuationColor is what remains after
+  // attenuationDistance (0: no attenuation).
+  float thickness = 0.0f;
+  float attenuationDistance = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;

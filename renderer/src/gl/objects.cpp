@@ -265,6 +265,14 @@ void Framebuffer::bindExternal(GLuint id) {
   glBindFramebuffer(GL_FRAMEBUFFER, id);
 }
 
+void Framebuffer::blitColorTo(const Framebuffer& target, int width, int height) const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, handle_.id());
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.id());
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+}
+
 std::vector<float> Framebuffer::readRgbaFloat(int index, int x, int y, int width,
                                               int height) const {
   std::vector<float> out(static_cast<size_t>(width) * height * 4);

@@ -100,6 +100,9 @@ class Framebuffer {
   // Binds a framebuffer Penumbra does not own (a host's render target), by its GL name.
   static void bindExternal(GLuint id);
 
+  // Copies colour attachment 0 of this framebuffer into `target`'s (same size and format,
+  // nearest), within the scissor rectangle when the scissor test is on. Leaves `target` bound.
+  void blitColorTo(const Framebuffer& target, int width, int height) const;
   // Reads RGBA float pixels of colour attachment `index` (row 0 = bottom, GL order).
   std::vector<float> readRgbaFloat(int index, int x, int y, int width, int height) const;
   std::vector<uint8_t> readRgba8(int index, int x, int y, int width, int height) const;

@@ -139,10 +139,12 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
         gs->bounds_.extend(wb);
         item.center = wb.center();
       }
-      const bool blend =
-          gs->materials_[static_cast<size_t>(item.material)].source.alphaMode == AlphaMode::Blend;
-      item.layer = static_cast<int>(gs->opaque_.size() + gs->blended_.size());
-      (blend ? gs->blended_ : gs->opaque_).push_back(item);
+      const Material& m = gs->materials_[static_cast<size_t>(item.material)].source;
+      const bool blend = m.alphaMode == AlphaMode::Blend;
+      const bool transmits = !blend && !m.unlit && m.transmission > 0.0f;
+      item.layer =
+          static_cast<int>(gs->opaque_.size() + gs->blended_.size() + gs->transmissive_.size());
+      (transmits ? gs->transmissive_ : blend ? gs->blended_ : gs->opaque_).push_back(item);
     }
   }
   return gs;
@@ -201,6 +203,11 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uClearcoatRoughness", m.clearcoatRoughness);
   program.set("uSheenColor", m.sheenColor);
   program.set("uSheenRoughness", m.sheenRoughness);
+  program.set("uTransmission", m.transmission);
+  program.set("uThickness", m.thickness);
+  program.set("uIor", m.ior);
+  program.set("uAttenuationDistance", m.attenuationDistance);
+  program.set("uAttenuationColor", m.attenuationColor);
   const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
                                &m.occlusionTexture, &m.emissiveTexture};
   static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",

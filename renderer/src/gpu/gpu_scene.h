@@ -37,7 +37,7 @@ struct DrawItem {
   glm::mat3 normalMatrix{1.0f};
   bool mirrored = false;  // negative determinant: front faces wind clockwise
   glm::vec3 center{0.0f};
-  int layer = 0;  // index in the scene's draw order: the stochastic-coverage key (uLayer)
+  int layer = 0;            // index in the scene's draw order: the stochastic-coverage key (uLayer)
   bool castsShadow = true;  // Instance::castsShadow
 };
 
@@ -47,6 +47,9 @@ class GpuScene {
 
   const std::vector<DrawItem>& opaque() const { return opaque_; }
   const std::vector<DrawItem>& blended() const { return blended_; }
+  // KHR_materials_transmission surfaces (not BLEND, not unlit): drawn after the opaque scene,
+  // which they show through themselves; left out of the prepass and the probe captures.
+  const std::vector<DrawItem>& transmissive() const { return transmissive_; }
   const GpuMaterial& material(int i) const { return materials_[static_cast<size_t>(i)]; }
   const Bounds& bounds() const { return bounds_; }
   size_t textureCount() const { return textures_.size(); }
@@ -56,7 +59,8 @@ class GpuScene {
   // True when a material cuts out (MASK) or covers partially (BLEND): its depth-only passes
   // need the material's alpha.
   bool needsAlpha(const DrawItem& item) const {
-    return material(item.material).source.alphaMode != AlphaMode::Opaque;
+    const Material& m = material(item.material).source;
+    return m.alphaMode != AlphaMode::Opaque || m.transmission > 0.0f;
   }
   // Sets uModel, uNormalMatrix and uLayer of a draw item.
   static void bindTransform(const gl::Program& program, const DrawItem& item);
@@ -70,6 +74,7 @@ class GpuScene {
   std::vector<GpuMaterial> materials_;
   std::vector<DrawItem> opaque_;
   std::vector<DrawItem> blended_;
+  std::vector<DrawItem> transmissive_;
   Bounds bounds_;
   // Bound to the material units a material leaves empty: WebGL rejects a draw whose sampler
   // units still hold a texture attached to the framebuffer being drawn into.

@@ -22,6 +22,7 @@ glm::mat3 environmentLookup(const RenderSettings& s) {
 
 Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   LightingPass pass;
+  pass.library_ = &library;
   // Every variant up front: no frame pays for a shader compile.
   for (int v = 0; v < 8; ++v) {
     auto p = library.program("mesh.vert", "lighting.frag",
@@ -29,7 +30,8 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
                               {"PN_AREA", (v & 2) ? "1" : "0"},
                               {"PN_PUNCTUAL", (v & 4) ? "1" : "0"},
                               {"PN_CAPTURE", "0"},
-                              {"PN_PROBE_CACHE_WRITE", "0"}});
+                              {"PN_PROBE_CACHE_WRITE", "0"},
+                              {"PN_TRANSMISSION", "0"}});
     if (!p) return p.error();
     pass.variants_[v] = *p;
   }
@@ -39,7 +41,8 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
                               {"PN_AREA", (v & 1) ? "1" : "0"},
                               {"PN_PUNCTUAL", (v & 2) ? "1" : "0"},
                               {"PN_CAPTURE", "1"},
-                              {"PN_PROBE_CACHE_WRITE", "0"}});
+                              {"PN_PROBE_CACHE_WRITE", "0"},
+                              {"PN_TRANSMISSION", "0"}});
     if (!p) return p.error();
     pass.captureVariants_[v] = *p;
   }
@@ -48,7 +51,8 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
                                 {"PN_AREA", "0"},
                                 {"PN_PUNCTUAL", "0"},
                                 {"PN_CAPTURE", "0"},
-                                {"PN_PROBE_CACHE_WRITE", "1"}});
+                                {"PN_PROBE_CACHE_WRITE", "1"},
+                                {"PN_TRANSMISSION", "0"}});
   if (!cache) return cache.error();
   pass.cacheWrite_ = *cache;
   auto depth = library.program("mesh.vert", "prepass.frag");
@@ -63,6 +67,25 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   d->upload(0, black, gl::DataType::UInt8);
   pass.dummy_ = std::move(*d);
   return pass;
+}
+
+Result<gl::Program*> LightingPass::transmissionProgram(int mode, bool occlusion, bool area,
+                                                       bool punctual) {
+  gl::Program*& slot =
+      mode == 2 ? composeVariants_[occlusion ? 1 : 0]
+                : transmissionVariants_[(occlusion ? 1 : 0) | (area ? 2 : 0) | (punctual ? 4 : 0)];
+  if (slot) return slot;
+  // Built on first use: most scenes have no transmissive surface.
+  auto p = library_->program("mesh.vert", "lighting.frag",
+                             {{"PN_OCCLUSION", occlusion ? "1" : "0"},
+                              {"PN_AREA", area ? "1" : "0"},
+                              {"PN_PUNCTUAL", punctual ? "1" : "0"},
+                              {"PN_CAPTURE", "0"},
+                              {"PN_PROBE_CACHE_WRITE", "0"},
+                              {"PN_TRANSMISSION", mode == 2 ? "2" : "1"}});
+  if (!p) return p.error();
+  slot = *p;
+  return slot;
 }
 
 void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
@@ -315,6 +338,60 @@ Status LightingPass::draw(const LightingBatch& b) {
     p.use();  // the background pass left its own program bound
     drawItems(p, *b.scene, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
   }
+  if (!b.scene->transmissive().empty()) {
+    // Transmissive surfaces' own light, batch by batch, beside the frame (which keeps showing
+    // what is behind them until composeTransmission). Every layer in front of the opaque
+    // scene adds its light: a back wall seen through a front one.
+    PN_TRY(b.targets->ensureTransmission());
+    b.targets->glassLight.framebuffer.bind();
+    if (b.first) {
+      gl::apply({});
+      gl::clearBufferFloat(0, 0, 0, 0, 0);
+    }
+    auto tp = transmissionProgram(1, b.occlusion, !b.area.empty(), !b.punctual.empty());
+    if (!tp) return tp.error();
+    LightingBatch glass = b;
+    glass.readProbeCache = false;  // the cache holds what lies behind
+    setUniforms(**tp, glass, envRotation);
+    gl::PipelineState own;
+    own.depthTest = gl::DepthTest::LessEqual;
+    own.depthWrite = false;
+    own.blend = gl::Blend::Additive;
+    drawItems(**tp, *b.scene, b.scene->transmissive(), true, own);
+    b.targets->frame.framebuffer.bind();
+  }
+  return {};
+}
+
+Status LightingPass::copyBehind(const LightingBatch& b) {
+  if (!b.scene || b.scene->transmissive().empty()) return {};
+  RenderTargets& t = *b.targets;
+  PN_TRY(t.ensureTransmission());
+  t.frame.framebuffer.blitColorTo(t.behind.framebuffer, t.width, t.height);
+  return {};
+}
+
+Status LightingPass::composeTransmission(const LightingBatch& b) {
+  if (!b.scene || b.scene->transmissive().empty() || !b.targets->glassLight.color) return {};
+  RenderTargets& t = *b.targets;
+  t.frame.framebuffer.bind();
+  gl::setViewport(0, 0, t.width, t.height);
+  auto cp = transmissionProgram(2, b.occlusion, false, false);
+  if (!cp) return cp.error();
+  const gl::Program& p = **cp;
+  LightingBatch compose = b;
+  compose.readProbeCache = false;
+  setUniforms(p, compose, environmentLookup(*b.settings));
+  t.behind.color.bind(kUnitBehind);
+  t.glassLight.color.bind(kUnitGlassLight);
+  p.set("uBehind", kUnitBehind);
+  p.set("uGlassLight", kUnitGlassLight);
+  p.set("uBehindDepthValid", b.occlusion ? 1 : 0);
+  // The nearest transmissive layer replaces the pixel: its own light (all layers') plus what
+  // it transmits of the copy.
+  gl::PipelineState state;
+  state.depthTest = gl::DepthTest::LessEqual;
+  drawItems(p, *b.scene, b.scene->transmissive(), true, state);
   return {};
 }
 

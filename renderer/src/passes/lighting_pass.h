@@ -87,6 +87,12 @@ class LightingPass {
   // side by side from x = 0, one instanced draw per item) with the PN_CAPTURE variant: both
   // faces of every surface, and where no geometry is, the environment with alpha
   // `skyDistance` (first batch). Extra batches add their light.
+  // After a frame's last batch: copies the whole frame (the scene behind transmissive
+  // surfaces), then draws those surfaces over it, each showing its own light (drawn with every
+  // batch) plus what it transmits of the copy (lighting.frag, PN_TRANSMISSION 2). Uses the
+  // first batch's camera and prepass. No-ops without transmissive surfaces.
+  Status copyBehind(const LightingBatch& batch);
+  Status composeTransmission(const LightingBatch& batch);
   Status drawCapture(const LightingBatch& batch, const std::vector<CaptureView>& views,
                      float skyDistance);
 
@@ -99,7 +105,13 @@ class LightingPass {
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
                       const CameraMatrices& camera, float blur, float alpha);
 
+  // mode 1: a transmissive surface's own light (per batch); 2: the compose pass.
+  Result<gl::Program*> transmissionProgram(int mode, bool occlusion, bool area, bool punctual);
+
+  gl::ShaderLibrary* library_ = nullptr;
   gl::Program* variants_[8] = {};
+  gl::Program* transmissionVariants_[8] = {};
+  gl::Program* composeVariants_[2] = {};
   gl::Program* captureVariants_[4] = {};  // area | punctual << 1
   gl::Program* depthOnly_ = nullptr;
   gl::Program* cacheWrite_ = nullptr;  // PN_PROBE_CACHE_WRITE

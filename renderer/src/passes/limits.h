@@ -24,6 +24,9 @@ inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccu
 // The probe volume's atlas (irradiance, depth moments and radiance in one texture), and the
 // per-view cache of its lookups (passes/lighting_pass.h).
 inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitProbeCacheRoom = 15;
+// Transmissive surfaces' compose pass: the frame's copy, and their own light (in the cache's
+// unit: the compose pass never reads the cache).
+inline constexpr int kUnitBehind = 12, kUnitGlassLight = kUnitProbeCache;
 static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeAtlas,
               "the point shadows overlap the probe volume's units");
 static_assert(kUnitProbeCacheRoom < 16, "WebGL2 guarantees 16 texture units");

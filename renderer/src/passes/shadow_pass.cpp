@@ -155,7 +155,7 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
   for (const bool alpha : {false, true}) {
     gl::Program& program = alpha ? *programs.alpha : *programs.opaque;
     bool used = false;
-    for (const auto* list : {&scene.opaque(), &scene.blended()}) {
+    for (const auto* list : {&scene.opaque(), &scene.blended(), &scene.transmissive()}) {
       for (const DrawItem& item : *list) {
         if (!item.castsShadow || scene.needsAlpha(item) != alpha) continue;
         if (!used) {

@@ -71,4 +71,15 @@ Status RenderTargets::ensureProbeCache() {
   return {};
 }
 
+Status RenderTargets::ensureTransmission() {
+  if (glassLight.color) return {};
+  auto light = makeColor(width, height, format, &frameDepth);
+  if (!light) return makeError("transmission target: " + light.message());
+  auto copy = makeColor(width, height, format, nullptr);
+  if (!copy) return makeError("transmission target: " + copy.message());
+  glassLight = std::move(*light);
+  behind = std::move(*copy);
+  return {};
+}
+
 }  // namespace penumbra::passes

@@ -35,12 +35,18 @@ struct RenderTargets {
   ColorTarget probeCache;
   gl::Texture2D probeCacheRoom;
 
+  // Transmissive surfaces (LightingPass): their own light, with the frame's depth, and the
+  // copy of the frame they look through. Accumulation format; made on first use.
+  ColorTarget glassLight;
+  ColorTarget behind;
+
   static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
                                       gl::PixelFormat prepassFormat);
   // After frame 1 the mean is frame 1 itself: the frame target becomes the mean by swapping
   // it with the other accumulation target (no accumulation pass), which becomes the frame
   // target. Every one of the three has the frame's depth attached, so any can be drawn into.
   Status ensureProbeCache();
+  Status ensureTransmission();
 
   void takeFrameAsMean() {
     std::swap(frame, accumulation[static_cast<size_t>(1 - current)]);

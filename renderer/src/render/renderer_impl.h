@@ -244,6 +244,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
   void endBand() const {
     if (pending.tiles > 1) gl::disableScissor();
   }
+  // Band t of k of the frame's accumulation (frame 1 becomes the mean by a swap instead).
+  void accumulateBand(int t, int k) {
+    if (pending.plan.frame == 1) {
+      if (t == k - 1) targets->takeFrameAsMean();  // mean_1 = x_1: no pass needed
+    } else {
+      accumulate->draw(*targets, pending.plan.frame);
+      if (t == k - 1) targets->current = 1 - targets->current;  // the new mean
+      endPass(&stats.accumulateMs);
+    }
+  }
 
   void beginFrame(const FramePlan& plan, int tiles) {
     pending = {};
@@ -336,6 +346,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const size_t batches =
         area.size() <= firstBatch ? 1 : 1 + (area.size() - firstBatch + kBatch - 1) / kBatch;
     pending.batches.reserve(batches);
+    const bool transmissive = scene && !scene->transmissive().empty();
     for (size_t b = 0; b < batches; ++b) {
       pending.batches.push_back(passes::LightingBatch{
           .targets = &*targets,
@@ -415,26 +426,42 @@ struct Renderer::Impl : progressive::FrameRenderer {
         }
         batch.punctual = punctual;
       }
-      const bool last = b + 1 == batches;
+      // Without transmissive surfaces the last batch's band also accumulates; with them the
+      // accumulation waits for their compose (below).
+      const bool accumulateHere = b + 1 == batches && !transmissive;
       for (int t = 0; t < k; ++t) {
-        units.push_back([this, b, t, k, last]() -> Status {
+        units.push_back([this, b, t, k, accumulateHere]() -> Status {
           band(t);
           const Status st = lighting->draw(pending.batches[b]);
-          if (!st) {
-            endBand();
-            return st;
-          }
-          if (t == k - 1) ++stats.lightingPasses;
-          endPass(&stats.lightingMs);
-          if (last && pending.plan.frame == 1) {
-            if (t == k - 1) targets->takeFrameAsMean();  // mean_1 = x_1: no pass needed
-          } else if (last) {
-            accumulate->draw(*targets, pending.plan.frame);
-            if (t == k - 1) targets->current = 1 - targets->current;  // the new mean
-            endPass(&stats.accumulateMs);
+          if (st) {
+            if (t == k - 1) ++stats.lightingPasses;
+            endPass(&stats.lightingMs);
+            if (accumulateHere) accumulateBand(t, k);
           }
           endBand();
-          return {};
+          return st;
+        });
+      }
+    }
+    if (transmissive) {
+      // Transmissive surfaces look through a copy of the whole frame (a refracted ray may land
+      // in another band): the copy is a unit of its own after every band's lighting, then each
+      // band composes them and accumulates.
+      units.push_back([this]() -> Status {
+        PN_TRY(lighting->copyBehind(pending.batches[0]));
+        endPass(&stats.lightingMs);
+        return {};
+      });
+      for (int t = 0; t < k; ++t) {
+        units.push_back([this, t, k]() -> Status {
+          band(t);
+          const Status st = lighting->composeTransmission(pending.batches[0]);
+          if (st) {
+            endPass(&stats.lightingMs);
+            accumulateBand(t, k);
+          }
+          endBand();
+          return st;
         });
       }
     }

@@ -15,13 +15,14 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 12> kSupportedExtensions = {
-    "KHR_texture_transform",   "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",     "EXT_lights_area",
-    "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression", "KHR_materials_ior",
-    "KHR_materials_specular",  "KHR_materials_unlit",
-    "KHR_materials_clearcoat", "KHR_materials_sheen",
+constexpr std::array<std::string_view, 14> kSupportedExtensions = {
+    "KHR_texture_transform",      "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",        "EXT_lights_area",
+    "KHR_mesh_quantization",      "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",    "KHR_materials_ior",
+    "KHR_materials_specular",     "KHR_materials_unlit",
+    "KHR_materials_clearcoat",    "KHR_materials_sheen",
+    "KHR_materials_transmission", "KHR_materials_volume",
 };
 
 bool isSupported(const std::string& ext) {
@@ -42,7 +43,7 @@ Status checkExtensions(const Document& doc, LoadContext& ctx) {
     if (ext.rfind("KHR_materials_", 0) == 0) {
       ctx.warn("uses " + ext +
                ", which is ignored (the metallic-roughness model with emissive_strength, ior, "
-               "specular, clearcoat, sheen and unlit is supported)");
+               "specular, clearcoat, sheen, transmission, volume and unlit is supported)");
     } else {
       ctx.warn("uses unsupported extension " + ext + " (ignored)");
     }

@@ -98,6 +98,38 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
   }
 }
 
+// KHR_materials_transmission and KHR_materials_volume (factors; their textures are not sampled,
+// like the other extensions' textures). Thickness is in the mesh's own units (the renderer
+// scales it by the instance's transform); a missing attenuationDistance means none.
+void parseTransmission(Parser& p, const json& ext, const std::string& path, Material& m,
+                       LoadContext& ctx) {
+  if (const json* e = p.object(ext, "KHR_materials_transmission", path)) {
+    const std::string ep = path + ".KHR_materials_transmission";
+    const double t = p.number(*e, "transmissionFactor", ep, 0.0);
+    if (t < 0.0 || t > 1.0) ctx.warn(ep + ".transmissionFactor: outside [0, 1]; clamped");
+    m.transmission = static_cast<float>(std::clamp(t, 0.0, 1.0));
+    if (p.object(*e, "transmissionTexture", ep))
+      ctx.warn(ep + ".transmissionTexture is not sampled (its factor applies)");
+  }
+  if (const json* e = p.object(ext, "KHR_materials_volume", path)) {
+    const std::string ep = path + ".KHR_materials_volume";
+    const double th = p.number(*e, "thicknessFactor", ep, 0.0);
+    if (th < 0.0) ctx.warn(ep + ".thicknessFactor: negative; using 0 (thin-walled)");
+    m.thickness = static_cast<float>(std::max(th, 0.0));
+    const double d = p.number(*e, "attenuationDistance", ep, 0.0);
+    if (e->contains("attenuationDistance") && !(d > 0.0))
+      ctx.warn(ep + ".attenuationDistance: not positive; no attenuation");
+    m.attenuationDistance = d > 0.0 && std::isfinite(d) ? static_cast<float>(d) : 0.0f;
+    const glm::vec3 c = p.vec<3>(*e, "attenuationColor", ep, glm::vec3(1.0f));
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      ctx.warn(ep + ".attenuationColor: outside [0, 1]; clamped");
+    m.attenuationColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    if (p.object(*e, "thicknessTexture", ep))
+      ctx.warn(ep + ".thicknessTexture is not sampled (its factor applies)");
+  }
+}
+
 LightType areaType(const std::string& s) {
   return s == "disk" ? LightType::Disk : LightType::Rect;
 }
@@ -448,6 +480,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
             *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
       }
       parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
+      parseTransmission(p, *ext, path + ".extensions", m, ctx);
     }
     doc.materials.push_back(std::move(md));
   });

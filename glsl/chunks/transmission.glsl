@@ -1,0 +1,64 @@
+// KHR_materials_transmission and KHR_materials_volume: what a transmissive surface shows of
+// the scene behind it. The opaque scene of this frame is copied before transmissive surfaces
+// are composed (passes/lighting_pass.h), so the surface looks it up at the point its refracted
+// ray reaches. One microfacet normal per pixel and frame: rough glass blurs what is behind it
+// as the frames accumulate, with no mip chain and no blur pass.
+//   thin-walled (thickness 0): the reflection lobe mirrored through the surface, continued to
+//     the opaque surface behind (the prepass's depth) or, over the background, to infinity;
+//   volume (thickness > 0): refracted into the medium (ior), looked up where it leaves it
+//     after the thickness (in world units: the factor times the item's scale), attenuated by
+//     Beer-Lambert along that path.
+uniform sampler2D uBehind;     // this frame's radiance of everything drawn before
+uniform sampler2D uGlassLight;  // the transmissive surfaces' own light (reflection, diffuse)
+uniform int uBehindDepthValid;  // uPrepass holds this view's linear depth (not in frame 1)
+uniform mat4 uModel;
+uniform mat4 uViewProj;  // this frame's, jittered like the copy
+#if !PN_OCCLUSION
+uniform sampler2D uPrepass;  // xyz view-space normal, w linear depth (0 = background)
+uniform mat4 uView;
+#endif
+
+// Radiance arriving through the surface at p (unit normal n facing the viewer, toward-viewer
+// v), and its Beer-Lambert transmittance.
+vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
+  ivec2 here = ivec2(gl_FragCoord.xy);
+  ivec2 size = textureSize(uBehind, 0);
+  vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(gl_FragCoord.xy, 9.0), alpha);
+  float ownDepth = -(uView * vec4(p, 1.0)).z;
+  float behindDepth = uBehindDepthValid != 0 ? texelFetch(uPrepass, here, 0).w : -1.0;
+  vec3 attenuation = vec3(1.0);
+  vec4 clip;
+  if (uThickness > 0.0) {
+    vec3 dir = refract(-v, h, 1.0 / max(ior, 1.0));
+    if (dot(dir, dir) < 1e-6) dir = -v;
+    float travel = uThickness * pow(abs(determinant(mat3(uModel))), 1.0 / 3.0);
+    if (uAttenuationDistance > 0.0) {
+      attenuation = pow(max(uAttenuationColor, vec3(1e-6)), vec3(travel / uAttenuationDistance));
+    }
+    clip = uViewProj * vec4(p + dir * travel, 1.0);
+  } else {
+    vec3 r = reflect(-v, h);
+    vec3 dir = r - 2.0 * dot(r, n) * n;
+    if (behindDepth == 0.0) {
+      clip = uViewProj * vec4(dir, 0.0);  // the background: a direction, at infinity
+    } else {
+      // Along the ray, as far as the view depth to the surface behind asks.
+      float along = max(-(mat3(uView) * dir).z, 0.05);
+      float travel = behindDepth > ownDepth ? (behindDepth - ownDepth) / along : 0.0;
+      clip = uViewProj * vec4(p + dir * travel, 1.0);
+    }
+  }
+  ivec2 q = here;
+  if (clip.w > 1e-6) {
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    // Off screen: what is straight behind stands in (the probe volume does not hold the
+    // background's detail).
+    if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
+      q = clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1);
+      // Something opaque in front of this surface: it is not what the ray reaches.
+      float qDepth = uBehindDepthValid != 0 ? texelFetch(uPrepass, q, 0).w : -1.0;
+      if (qDepth > 0.0 && qDepth < ownDepth) q = here;
+    }
+  }
+  return texelFetch(uBehind, q, 0).rgb * attenuation;
+}
