@@ -170,8 +170,8 @@ TEST_F(RendererGLTest, MaterialGridMatchesGolden) {
 }
 
 TEST_F(RendererGLTest, ShowroomMatchesGolden) {
-  // Clearcoat, sheen, a solid glass ball (refraction, Beer-Lambert) and a frosted pane (rough
-  // thin-walled transmission) against high-contrast silhouettes.
+  // Clearcoat, sheen, a solid glass ball (refraction, Beer-Lambert) and a tinted thin-walled
+  // pane against high-contrast silhouettes.
   Loaded l =
       loadJob("showroom/showroom.json", {{"width", "120"}, {"height", "80"}, {"frames", "32"}},
               {.faceSize = 32, .samples = 32});

@@ -155,7 +155,7 @@ def main():
     if a.material == "gltf":
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         from gltf_brdf import use_gltf_brdf
-        rebuilt = use_gltf_brdf()
+        rebuilt = use_gltf_brdf(g.get("materials", []))
 
     # ---- output size
     if a.size:
@@ -326,7 +326,8 @@ def main():
         d = float(sf.get("progressive", {}).get("occlusionDistance", 0.0))
         e.gtao_distance = d if d > 0 else 0.25 * scene_diagonal()
         e.use_ssr = True
-        e.use_ssr_refraction = False
+        # Screen-space refraction for transmissive materials (gltf_brdf marks them).
+        e.use_ssr_refraction = True
         scene.render.filter_size = 1.0
 
     t0 = time.time()

@@ -23,6 +23,7 @@ SCENES = {
     "dense": "assets/dense/dense.json",
     "glass": "assets/glass/glass.json",
     "room_cm": "assets/room_cm/room_cm.json",  # modelled in centimetres (issue #14)
+    "showroom": "assets/showroom/showroom.json",  # clearcoat, glass, sheen (issue #17)
 }
 SIZE = "1280x720"
 CYCLES_SAMPLES = 128  # the reference (seed 2)
