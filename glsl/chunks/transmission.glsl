@@ -5,9 +5,9 @@
 // as the frames accumulate, with no mip chain and no blur pass.
 //   thin-walled (thickness 0): the reflection lobe mirrored through the surface, continued to
 //     the opaque surface behind (the prepass's depth) or, over the background, to infinity;
-//   volume (thickness > 0): refracted into the medium (ior), looked up where it leaves it
-//     after the thickness (in world units: the factor times the item's scale), attenuated by
-//     Beer-Lambert along that path.
+//   volume (thickness > 0): refracted into the medium (ior), through a sphere of the
+//     thickness's diameter (in world units: the factor times the item's scale), attenuated by
+//     Beer-Lambert along the chord, refracted out and continued like a thin-walled ray.
 uniform sampler2D uBehind;     // this frame's radiance of everything drawn before
 uniform sampler2D uGlassLight;  // the transmissive surfaces' own light (reflection, diffuse)
 uniform int uBehindDepthValid;  // uPrepass holds this view's linear depth (not in frame 1)
@@ -27,26 +27,40 @@ vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
   float ownDepth = -(uView * vec4(p, 1.0)).z;
   float behindDepth = uBehindDepthValid != 0 ? texelFetch(uPrepass, here, 0).w : -1.0;
   vec3 attenuation = vec3(1.0);
-  vec4 clip;
+  vec3 start = p;  // where the ray leaves the surface (or the volume)
+  vec3 dir;        // and its direction from there
   if (uThickness > 0.0) {
-    vec3 dir = refract(-v, h, 1.0 / max(ior, 1.0));
-    if (dot(dir, dir) < 1e-6) dir = -v;
-    float travel = uThickness * pow(abs(determinant(mat3(uModel))), 1.0 / 3.0);
+    // The volume is taken for a sphere of diameter `thickness` (world units: the factor times
+    // the item's scale) entered here: the chord shortens toward the silhouette, and the ray
+    // refracts again where it leaves through the far side, whose normal follows from the chord
+    // (n' = n - 2 (n.d) d). A ball then shows the inverted scene behind it, as glass does; a
+    // slab seen face-on passes the ray straight through.
+    vec3 inside = refract(-v, h, 1.0 / max(ior, 1.0));
+    if (dot(inside, inside) < 1e-6) inside = -v;
+    float scale = pow(abs(determinant(mat3(uModel))), 1.0 / 3.0);
+    float chord = uThickness * scale * max(-dot(n, inside), 0.05);
     if (uAttenuationDistance > 0.0) {
-      attenuation = pow(max(uAttenuationColor, vec3(1e-6)), vec3(travel / uAttenuationDistance));
+      attenuation = pow(max(uAttenuationColor, vec3(1e-6)), vec3(chord / uAttenuationDistance));
     }
-    clip = uViewProj * vec4(p + dir * travel, 1.0);
+    start = p + inside * chord;
+    vec3 exitNormal = n - 2.0 * dot(n, inside) * inside;
+    dir = refract(inside, -exitNormal, max(ior, 1.0));
+    if (dot(dir, dir) < 1e-6) dir = inside;  // total internal reflection: kept going
   } else {
     vec3 r = reflect(-v, h);
-    vec3 dir = r - 2.0 * dot(r, n) * n;
-    if (behindDepth == 0.0) {
-      clip = uViewProj * vec4(dir, 0.0);  // the background: a direction, at infinity
-    } else {
-      // Along the ray, as far as the view depth to the surface behind asks.
-      float along = max(-(mat3(uView) * dir).z, 0.05);
-      float travel = behindDepth > ownDepth ? (behindDepth - ownDepth) / along : 0.0;
-      clip = uViewProj * vec4(p + dir * travel, 1.0);
-    }
+    dir = r - 2.0 * dot(r, n) * n;  // the reflection lobe mirrored through the surface
+  }
+  vec4 clip;
+  if (behindDepth == 0.0) {
+    clip = uViewProj * vec4(dir, 0.0);  // the background: a direction, at infinity
+  } else if (behindDepth < 0.0) {
+    clip = uViewProj * vec4(start, 1.0);  // no depth yet (frame 1): where the ray leaves
+  } else {
+    // Along the ray, as far as the view depth to the surface behind this pixel asks.
+    float startDepth = -(uView * vec4(start, 1.0)).z;
+    float along = max(-(mat3(uView) * dir).z, 0.05);
+    float travel = max(behindDepth - startDepth, 0.0) / along;
+    clip = uViewProj * vec4(start + dir * travel, 1.0);
   }
   ivec2 q = here;
   if (clip.w > 1e-6) {
