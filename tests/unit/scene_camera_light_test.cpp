@@ -252,10 +252,10 @@ TEST(SceneGltfLight, PunctualLights) {
 
 TEST(SceneGltfExtensions, RequiredUnknownExtensionIsAnError) {
   GltfBuilder b;
-  b.useExtension("KHR_texture_basisu", true);
+  b.useExtension("EXT_texture_webp", true);
   auto scene = b.load();
   ASSERT_FALSE(scene.ok());
-  EXPECT_EQ(scene.message(), "test.gltf: requires unsupported extension KHR_texture_basisu");
+  EXPECT_EQ(scene.message(), "test.gltf: requires unsupported extension EXT_texture_webp");
 }
 
 TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {

@@ -173,12 +173,12 @@ TEST(SceneGltfMalformed, MissingTextureIsOnlyAWarning) {
 TEST(SceneGltfMalformed, HugeDeclaredPngSaysHowLarge) {
   // A PNG header declaring 60000 x 60000: stb_image calls that an "unknown image type"; the
   // warning must say what is wrong.
-  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0,    13,
-                              'I',  'H', 'D', 'R', 0,    0,    0xEA, 0x60, 0, 0, 0xEA, 0x60,
-                              8,    6,   0,   0,   0,  // depth, colour type, compression, filter,
-                                                       // interlace
-                              0,    0,   0,   0,       // CRC (not checked)
-                              0,    0,   0,   0,   'I',  'E',  'N',  'D',  0, 0, 0,    0};
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H',
+                              'D', 'R', 0, 0, 0xEA, 0x60, 0, 0, 0xEA, 0x60, 8, 6, 0, 0,
+                              0,           // depth, colour type, compression, filter,
+                                           // interlace
+                              0, 0, 0, 0,  // CRC (not checked)
+                              0, 0, 0, 0, 'I', 'E', 'N', 'D', 0, 0, 0, 0};
   GltfBuilder b = texturedTriangle();
   b.doc["images"][0] = {{"uri", "data:image/png;base64," + base64(png)}};
   b.doc["materials"][0] = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}};

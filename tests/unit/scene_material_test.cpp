@@ -296,6 +296,50 @@ TEST(SceneGltfMaterial, TransmissionAndVolumeExtensions) {
     EXPECT_EQ(w.find("unsupported"), std::string::npos) << w;
 }
 
+TEST(SceneGltfMaterial, Ktx2TexturesFallBackNatively) {
+  // KHR_texture_basisu: the native build has no Basis Universal transcoder, so a texture takes
+  // its fallback PNG (with a warning), a KTX2-only texture is left out (with a warning), and a
+  // KTX2 image reached as a plain source is a placeholder. The browser build transcodes them
+  // (web/tests/compressed.test.mjs).
+  const std::string ktx2 = "data:image/ktx2;base64,q0tUWCAyMLsNChoKAAAAAA==";  // the identifier
+  GltfBuilder b;
+  b.useExtension("KHR_texture_basisu", true);
+  b.push("images", {{"uri", pngDataUri(2, 2, {1, 0, 0, 1})}});    // 0: the fallback
+  b.push("images", {{"uri", ktx2}, {"mimeType", "image/ktx2"}});  // 1
+  b.push("textures", {{"source", 0}, {"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}});
+  b.push("textures", {{"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}});
+  b.push("textures", {{"source", 1}});
+  for (int t = 0; t < 3; ++t) {
+    b.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", t}}}}}});
+  }
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const auto& m = scene->materials;
+  ASSERT_EQ(m.size(), 3u);
+  ASSERT_GE(m[0].baseColorTexture.image, 0);
+  const ImageData& fallback = scene->images[static_cast<size_t>(m[0].baseColorTexture.image)];
+  EXPECT_EQ(fallback.width, 2);
+  EXPECT_FALSE(fallback.placeholder);
+  EXPECT_EQ(m[1].baseColorTexture.image, -1);
+  ASSERT_GE(m[2].baseColorTexture.image, 0);
+  EXPECT_TRUE(scene->images[static_cast<size_t>(m[2].baseColorTexture.image)].placeholder);
+  EXPECT_TRUE(hasWarning(*scene,
+                         "textures[0]: KHR_texture_basisu (KTX2) is transcoded only by "
+                         "the browser build"));
+  EXPECT_TRUE(hasWarning(*scene, "using its fallback image"));
+  EXPECT_TRUE(hasWarning(*scene, "textures[1]: KHR_texture_basisu (KTX2)"));
+  EXPECT_TRUE(hasWarning(*scene, "it has no fallback image"));
+  EXPECT_TRUE(hasWarning(*scene, "cannot decode KTX2 (this build has no KTX2 transcoder)"));
+}
+
+TEST(SceneGltfMaterial, Ktx2SourceMustBeAnImage) {
+  GltfBuilder b;
+  b.push("textures", {{"extensions", {{"KHR_texture_basisu", {{"source", 3}}}}}});
+  auto scene = b.load();
+  ASSERT_FALSE(scene.ok());
+  EXPECT_THAT(scene.message(), HasSubstr("KHR_texture_basisu.source"));
+}
+
 TEST(SceneGltfMaterial, OversizedImagesAreHalvedUntilTheyFit) {
   GltfBuilder b;
   b.push("images", {{"uri", pngDataUri(8, 4, {1, 0.5f, 0, 1})}});

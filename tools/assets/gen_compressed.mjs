@@ -8,13 +8,17 @@
 //                        8-bit octahedral with KHR_mesh_quantization); the fallback buffer
 //                        has no data
 //   product_{draco,meshopt}.json  scene files as assets/product/product.json, for these files
-// Both extensions are in extensionsRequired: nothing renders without decoding them.
+//   glass_ktx2.gltf      the glass scene (assets/glass) with its lattice texture as a KTX2 file
+//                        (lattice.ktx2: UASTC, Binomial's Basis Universal encoder as packaged by
+//                        ktx2-encoder) under KHR_texture_basisu, with no PNG fallback
+// Every extension is in extensionsRequired: nothing renders without decoding it.
 // tools/build-web runs it into web/dist/assets/compressed/ (the environment resolves to
 // ../env/studio_sky.hdr there). Usage: node tools/assets/gen_compressed.mjs --out-dir DIR
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { inflateSync } from 'node:zlib';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const modules = join(root, 'web/node_modules');
@@ -29,6 +33,8 @@ const outDir = resolve(args[outIndex + 1]);
 const draco3d = createRequire(import.meta.url)(join(modules, 'draco3dgltf/draco3dgltf.js'));
 const { MeshoptEncoder } = await import(
   pathToFileURL(join(modules, 'meshoptimizer/meshopt_encoder.js')).href);
+const { encodeToKTX2 } = await import(
+  pathToFileURL(join(modules, 'ktx2-encoder/dist/node/index.js')).href);
 
 const srcDir = join(root, 'assets/product');
 const source = JSON.parse(readFileSync(join(srcDir, 'product.gltf'), 'utf8'));
@@ -210,3 +216,50 @@ for (const [name, make] of [['product_draco', dracoFile], ['product_meshopt', me
                                     gltf: `${name}.glb` }, null, 2)}\n`);
   console.log(`gen_compressed: ${name}.glb ${bytes.length} B`);
 }
+
+// The glass scene's lattice texture (8-bit RGBA, as tools/assets/gen_glass.py writes it: one
+// IDAT, filter 0 on every row) as RGBA8 pixels.
+function latticePixels() {
+  const png = readFileSync(join(root, 'assets/glass/lattice.png'));
+  const width = png.readUInt32BE(16), height = png.readUInt32BE(20);
+  if (png[24] !== 8 || png[25] !== 6) throw new Error('lattice.png: not 8-bit RGBA');
+  let at = 8;
+  const idat = [];
+  while (at < png.length) {
+    const length = png.readUInt32BE(at);
+    if (png.toString('latin1', at + 4, at + 8) === 'IDAT') idat.push(png.subarray(at + 8, at + 8 + length));
+    at += 12 + length;
+  }
+  const raw = inflateSync(Buffer.concat(idat));
+  const data = new Uint8Array(width * height * 4);
+  for (let y = 0; y < height; ++y) {
+    if (raw[y * (width * 4 + 1)] !== 0) throw new Error('lattice.png: a filtered row');
+    data.set(raw.subarray(y * (width * 4 + 1) + 1, (y + 1) * (width * 4 + 1)), y * width * 4);
+  }
+  return { width, height, data };
+}
+
+async function glassKtx2() {
+  const glassDir = join(root, 'assets/glass');
+  const json = JSON.parse(readFileSync(join(glassDir, 'glass.gltf'), 'utf8'));
+  const pixels = latticePixels();
+  // UASTC (near-lossless) with the sRGB transfer function, no mip levels (nearest filtering).
+  const ktx2 = await encodeToKTX2(new Uint8Array(0), {
+    isUASTC: true, isSetKTX2SRGBTransferFunc: true, generateMipmap: false, isKTX2File: true,
+    imageDecoder: async () => pixels,
+  });
+  json.buffers = json.buffers.map((b) => ({ ...b, uri: `../glass/${b.uri}` }));
+  json.images = [{ uri: 'lattice.ktx2', mimeType: 'image/ktx2' }];
+  json.textures = json.textures.map(({ source, ...t }) => ({
+    ...t, extensions: { KHR_texture_basisu: { source } } }));
+  require(json, 'KHR_texture_basisu');
+  writeFileSync(join(outDir, 'lattice.ktx2'), ktx2);
+  writeFileSync(join(outDir, 'glass_ktx2.gltf'), `${JSON.stringify(json, null, 1)}\n`);
+  const scene = JSON.parse(readFileSync(join(glassDir, 'glass.json'), 'utf8'));
+  writeFileSync(join(outDir, 'glass_ktx2.json'),
+                `${JSON.stringify({ ...scene, comment: `${scene.comment} (glass_ktx2.gltf: the ` +
+                                    'lattice as KTX2, by tools/assets/gen_compressed.mjs)',
+                                    gltf: 'glass_ktx2.gltf' }, null, 2)}\n`);
+  console.log(`gen_compressed: lattice.ktx2 ${ktx2.length} B`);
+}
+await glassKtx2();

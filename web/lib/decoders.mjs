@@ -1,22 +1,29 @@
-// Decoders for compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression),
-// loaded only when a scene's glTF names one of the extensions, so the core module stays small.
+// Decoders for compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression)
+// and textures (KHR_texture_basisu: KTX2), loaded only when a scene's glTF names one of the
+// extensions, so the core module stays small.
 // They are the decoders their authors publish on npm, copied by tools/build-web from
 // web/node_modules (pinned by web/package-lock.json) into lib/decoders/ next to this file:
 //   meshopt_decoder.mjs                                   meshoptimizer (an ES module)
 //   draco_decoder_gltf_nodejs.js + draco_decoder_gltf.wasm  Google's Draco glTF decoder
 //                                  (draco3dgltf; an Emscripten UMD script that also runs in a page)
+//   basis_transcoder.js + .wasm    Binomial's Basis Universal transcoder, as three.js ships it
+//                                  (three/examples/jsm/libs/basis; a UMD script defining BASIS)
 // The wasm loader calls them synchronously from C++ (renderer/src/scene/mesh_decode_web.cpp)
 // through Module.penumbraDecoders, where the native build calls libdraco and meshoptimizer: the
 // checks, conversions and error messages around the decoding are the same C++ in both builds.
+// KTX2 images are transcoded to RGBA8 (renderer/src/scene/ktx2_web.cpp); the native build has
+// no transcoder and takes a texture's fallback image.
 import { PenumbraError } from './staging.mjs';
 
 export const DRACO = 'KHR_draco_mesh_compression';
 export const MESHOPT = 'EXT_meshopt_compression';
+export const BASISU = 'KHR_texture_basisu';
 const BASE = new URL('./decoders/', import.meta.url);
 const text = new TextDecoder();
 
 let meshopt = null;  // promise of the MeshoptDecoder, once asked for
 let draco = null;    // promise of the Draco decoder module, once asked for
+let basis = null;    // promise of the Basis Universal transcoder module, once asked for
 
 // The glTF JSON of a staged file: a .glb's first (JSON) chunk, or a .gltf's text; '' otherwise.
 function gltfJsonText(bytes) {
@@ -35,12 +42,13 @@ function gltfJsonText(bytes) {
 // Which decoders the staged files need: those whose extension a glTF's JSON names (in
 // extensionsUsed/Required or on a primitive or buffer view).
 export function neededDecoders(files) {
-  const need = { draco: false, meshopt: false };
+  const need = { draco: false, meshopt: false, basis: false };
   for (const f of files) {
     if (!/\.(glb|gltf)$/i.test(f.path)) continue;
     const json = gltfJsonText(f.bytes);
     need.draco ||= json.includes(DRACO);
     need.meshopt ||= json.includes(MESHOPT);
+    need.basis ||= json.includes(BASISU);
   }
   return need;
 }
@@ -59,10 +67,10 @@ function loadMeshopt() {
   return meshopt;
 }
 
-function loadDraco() {
-  const url = new URL('draco_decoder_gltf_nodejs.js', BASE).href;
-  draco ||= new Promise((resolve, reject) => {
-    if (typeof globalThis.DracoDecoderModule === 'function') {
+// A classic script that defines a global factory (Emscripten's UMD output), added once.
+function loadScript(url, global) {
+  return new Promise((resolve, reject) => {
+    if (typeof globalThis[global] === 'function') {
       resolve();
       return;
     }
@@ -72,32 +80,55 @@ function loadDraco() {
     script.onerror = () => reject(new Error('the script did not load'));
     document.head.appendChild(script);
   }).then(() => {
-    if (typeof globalThis.DracoDecoderModule !== 'function') {
-      throw new Error('the script defines no DracoDecoderModule');
+    if (typeof globalThis[global] !== 'function') {
+      throw new Error(`the script defines no ${global}`);
     }
-    return new Promise((resolve, reject) => {
-      globalThis.DracoDecoderModule({
-        locateFile: (f) => new URL(f, BASE).href,
-        onAbort: (what) => reject(new Error(`aborted: ${what}`)),
-        print: () => {},
-        printErr: (t) => console.warn(`[penumbra] draco: ${t}`),
-      }).then(resolve, reject);
-    });
-  }).catch((e) => {
+    return globalThis[global];
+  });
+}
+
+function loadDraco() {
+  const url = new URL('draco_decoder_gltf_nodejs.js', BASE).href;
+  draco ||= loadScript(url, 'DracoDecoderModule').then((factory) => new Promise((resolve, reject) => {
+    factory({
+      locateFile: (f) => new URL(f, BASE).href,
+      onAbort: (what) => reject(new Error(`aborted: ${what}`)),
+      print: () => {},
+      printErr: (t) => console.warn(`[penumbra] draco: ${t}`),
+    }).then(resolve, reject);
+  })).catch((e) => {
     draco = null;
     throw new PenumbraError(`cannot load the Draco decoder (${url}): ${why(e)}`);
   });
   return draco;
 }
 
+function loadBasis() {
+  const url = new URL('basis_transcoder.js', BASE).href;
+  basis ||= loadScript(url, 'BASIS').then((factory) => factory({
+    locateFile: (f) => new URL(f, BASE).href,
+    print: () => {},
+    printErr: (t) => console.warn(`[penumbra] basis: ${t}`),
+  })).then((module) => {
+    module.initializeBasis();
+    return module;
+  }).catch((e) => {
+    basis = null;
+    throw new PenumbraError(`cannot load the KTX2 transcoder (${url}): ${why(e)}`);
+  });
+  return basis;
+}
+
 // Loads the decoders the staged files need (each at most once per page) and hands them to the
 // wasm module, before its synchronous load runs. Rejects with a one-line PenumbraError.
 export async function provideDecoders(mod, files) {
   const need = neededDecoders(files);
-  if (!need.draco && !need.meshopt) return;
-  const [m, d] = await Promise.all([need.meshopt ? loadMeshopt() : null,
-                                    need.draco ? loadDraco() : null]);
+  if (!need.draco && !need.meshopt && !need.basis) return;
+  const [m, d, b] = await Promise.all([need.meshopt ? loadMeshopt() : null,
+                                       need.draco ? loadDraco() : null,
+                                       need.basis ? loadBasis() : null]);
   mod.penumbraDecoders = { ...mod.penumbraDecoders };
   if (m) mod.penumbraDecoders.meshopt = m;
   if (d) mod.penumbraDecoders.draco = d;
+  if (b) mod.penumbraDecoders.basis = b;
 }

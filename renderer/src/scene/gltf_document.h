@@ -160,6 +160,7 @@ struct MaterialDesc {
 struct TextureDesc {
   int source = -1;
   int sampler = -1;
+  int basisuSource = -1;  // KHR_texture_basisu: a KTX2 image (preferred where it transcodes)
 };
 
 struct ImageDesc {

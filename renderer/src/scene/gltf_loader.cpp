@@ -15,7 +15,7 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 14> kSupportedExtensions = {
+constexpr std::array<std::string_view, 15> kSupportedExtensions = {
     "KHR_texture_transform",      "KHR_materials_emissive_strength",
     "KHR_lights_punctual",        "EXT_lights_area",
     "KHR_mesh_quantization",      "KHR_draco_mesh_compression",
@@ -23,6 +23,7 @@ constexpr std::array<std::string_view, 14> kSupportedExtensions = {
     "KHR_materials_specular",     "KHR_materials_unlit",
     "KHR_materials_clearcoat",    "KHR_materials_sheen",
     "KHR_materials_transmission", "KHR_materials_volume",
+    "KHR_texture_basisu",
 };
 
 bool isSupported(const std::string& ext) {

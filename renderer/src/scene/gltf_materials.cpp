@@ -1,12 +1,14 @@
 // Materials, textures, samplers and images. Images are decoded to RGBA8 with stb_image (whose
-// implementation lives in image/stb_impl.cpp); a missing or undecodable image is a warning and
-// a 1x1 placeholder, so a scene with a broken texture still renders.
+// implementation lives in image/stb_impl.cpp), KTX2 images (KHR_texture_basisu) by the
+// build's transcoder where it has one (ktx2_backend.h); a missing or undecodable image is a
+// warning and a 1x1 placeholder, so a scene with a broken texture still renders.
 #include <algorithm>
 #include <cstring>
 
 #include <stb_image.h>
 
 #include "scene/gltf_document.h"
+#include "scene/ktx2_backend.h"
 
 namespace penumbra {
 
@@ -94,6 +96,19 @@ std::pair<uint32_t, uint32_t> pngDeclaredSize(const uint8_t* data, uint64_t size
   return {be32(16), be32(20)};
 }
 
+// Halves an image until it fits the maximum texture size (a warning says so).
+ImageData fitToMaxSize(ImageData img, const std::string& what, LoadContext& ctx) {
+  const int maxSize = std::max(1, ctx.options.maxTextureSize);
+  const int dw = img.width, dh = img.height;
+  if (img.width > maxSize || img.height > maxSize) {
+    while (img.width > maxSize || img.height > maxSize) halve(img);
+    ctx.warn(what + ": " + std::to_string(dw) + "x" + std::to_string(dh) +
+             " is larger than the maximum texture size " + std::to_string(maxSize) +
+             "; downscaled to " + std::to_string(img.width) + "x" + std::to_string(img.height));
+  }
+  return img;
+}
+
 Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadContext& ctx) {
   const ImageDesc& desc = doc.images[static_cast<size_t>(index)];
   std::string label = desc.name;
@@ -130,6 +145,22 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
     size = owned.size();
   }
 
+  if (backend::isKtx2({data, static_cast<size_t>(size)})) {
+    // KHR_texture_basisu: transcoded to RGBA8 where the build can (the browser).
+    ImageData img;
+    img.name = label;
+    const std::string why =
+        backend::ktx2Available()
+            ? backend::ktx2Transcode({data, static_cast<size_t>(size)}, uint64_t{1} << 28, img)
+            : "this build has no KTX2 transcoder";
+    if (!why.empty()) {
+      ctx.warn(what + ": cannot decode KTX2 (" + why + "); using a 1x1 placeholder");
+      return placeholder(label, normalOnly);
+    }
+    PN_TRY(ctx.reserve(img.pixels.size(), what + " (" + std::to_string(img.width) + "x" +
+                                              std::to_string(img.height) + " RGBA8)"));
+    return fitToMaxSize(std::move(img), what, ctx);
+  }
   if (!pngChunksFit(data, size)) {
     ctx.warn(what +
              ": cannot decode (corrupt PNG: a chunk runs past the end of the data); "
@@ -164,20 +195,29 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
   img.pixels.assign(pixels, pixels + static_cast<size_t>(dw) * static_cast<size_t>(dh) * 4);
   stbi_image_free(pixels);
 
-  const int maxSize = std::max(1, ctx.options.maxTextureSize);
-  if (img.width > maxSize || img.height > maxSize) {
-    while (img.width > maxSize || img.height > maxSize) halve(img);
-    ctx.warn(what + ": " + std::to_string(dw) + "x" + std::to_string(dh) +
-             " is larger than the maximum texture size " + std::to_string(maxSize) +
-             "; downscaled to " + std::to_string(img.width) + "x" + std::to_string(img.height));
-  }
-  return img;
+  return fitToMaxSize(std::move(img), what, ctx);
 }
 
 }  // namespace
 
 Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
   scene.samplers = doc.samplers;
+
+  // KHR_texture_basisu: a texture's KTX2 image where this build transcodes it, else its
+  // fallback `source` (a warning says which, once per texture).
+  const bool ktx2 = backend::ktx2Available();
+  for (size_t t = 0; t < doc.textures.size(); ++t) {
+    TextureDesc& tex = doc.textures[t];
+    if (tex.basisuSource < 0) continue;
+    if (ktx2) {
+      tex.source = tex.basisuSource;
+    } else {
+      ctx.warn("textures[" + std::to_string(t) +
+               "]: KHR_texture_basisu (KTX2) is transcoded only by the browser build (Debian "
+               "has no Basis Universal transcoder); " +
+               (tex.source >= 0 ? "using its fallback image" : "it has no fallback image"));
+    }
+  }
 
   // Which images the materials use, and whether only as normal maps (for the placeholder).
   std::vector<int> use(doc.images.size(), 0);

@@ -489,6 +489,11 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     TextureDesc t;
     t.source = p.index(o, "source", path, nImages, "images");
     t.sampler = p.index(o, "sampler", path, nSamplers, "samplers");
+    if (const json* ext = p.object(o, "extensions", path)) {
+      const std::string ep = path + ".extensions.KHR_texture_basisu";
+      if (const json* b = p.object(*ext, "KHR_texture_basisu", path + ".extensions"))
+        t.basisuSource = p.index(*b, "source", ep, nImages, "images", true);
+    }
     doc.textures.push_back(t);
   });
 

@@ -1,0 +1,34 @@
+// KTX2 (KHR_texture_basisu) textures, one implementation per build: in the browser Binomial's
+// Basis Universal transcoder (as three.js packages it on npm), which web/lib/decoders.mjs loads
+// only for a file that uses the extension and ktx2_web.cpp calls; natively none (Debian packages
+// no transcoder), so the loader takes the texture's fallback image there, with a warning.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "penumbra/scene.h"
+
+namespace penumbra::gltf::backend {
+
+// Whether this build can transcode KTX2 images (loaded for the current file).
+bool ktx2Available();
+
+// Transcodes the first image (level 0, layer 0, face 0) of a Basis Universal KTX2 file to
+// RGBA8, row 0 at the top, into `out` (pixels, width, height). Returns an empty string, or the
+// transcoder's words for what is wrong. At most `maxPixels` pixels.
+std::string ktx2Transcode(std::span<const uint8_t> src, uint64_t maxPixels, ImageData& out);
+
+// Whether `bytes` start like a KTX2 file (its 12-byte identifier).
+inline bool isKtx2(std::span<const uint8_t> bytes) {
+  static constexpr uint8_t kId[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
+                                      '0',  0xBB, '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() < sizeof kId) return false;
+  for (size_t i = 0; i < sizeof kId; ++i) {
+    if (bytes[i] != kId[i]) return false;
+  }
+  return true;
+}
+
+}  // namespace penumbra::gltf::backend
