@@ -3,6 +3,7 @@
 // for the bundled Cornell box and the dense (>100k triangles) model. Shaders are compiled
 // before timing starts (the first-frame figure excludes compilation, as the issue asks).
 // --breakdown also times every pass (prepass, shadow maps, lighting, accumulation, tone map).
+#include <algorithm>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -48,12 +49,13 @@ struct Row {
 };
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
-                bool probeCache) {
+                bool probeCache, bool probeVolume = true) {
   JobRequest request;
   request.scenePath = sceneFile;
   request.settings = {{"width", std::to_string(w)},
                       {"height", std::to_string(h)},
                       {"frames", std::to_string(frames)}};
+  if (!probeVolume) request.settings.push_back({"probeVolume", "false"});
   auto job = RenderJob::load(request);
   if (!job) return job.error();
   const Scene* scene = &job->scene;
@@ -113,6 +115,49 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   return row;
 }
 
+// "WxH", or a message and false.
+bool parseSize(const std::string& size, int& w, int& h) {
+  if (std::sscanf(size.c_str(), "%dx%d", &w, &h) == 2) return true;
+  std::fprintf(stderr, "penumbra-bench: error: bad size '%s'\n", size.c_str());
+  return false;
+}
+
+// The probe volume's per-frame cost: runs with and without it, alternating (so a machine's
+// drifting load hits both alike), and the medians of their per-frame times.
+int giCost(const std::vector<std::string>& scenes, const std::vector<std::string>& sizes,
+           int frames, int rounds, bool probeCache) {
+  std::printf("| scene | size | m | rounds | per frame without (ms) | with (ms) | added |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  for (const auto& scene : scenes) {
+    for (const auto& size : sizes) {
+      int w = 0, h = 0;
+      if (!parseSize(size, w, h)) return 1;
+      std::vector<double> without, with;
+      for (int i = 0; i < rounds; ++i) {
+        for (const bool gi : {false, true}) {
+          auto row = run(scene, w, h, frames, false, probeCache, gi);
+          if (!row) {
+            std::fprintf(stderr, "penumbra-bench: error: %s\n", row.message().c_str());
+            return 1;
+          }
+          (gi ? with : without).push_back(row->perFrameMs);
+        }
+      }
+      const double a = median(without), b = median(with);
+      std::printf("| %s | %dx%d | %d | %d | %.1f | %.1f | %+.1f %% |\n",
+                  scene.substr(scene.find_last_of('/') + 1).c_str(), w, h, frames, rounds, a, b,
+                  100.0 * (b - a) / a);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -130,6 +175,10 @@ int main(int argc, char** argv) {
   bool noProbeCache = false;
   app.add_flag("--no-probe-cache", noProbeCache,
                "look the probe volume up every frame (A/B against its per-view cache)");
+  int giRounds = 0;
+  app.add_option("--gi-cost", giRounds,
+                 "instead of the table: what the probe volume adds per frame, from this many "
+                 "interleaved runs with and without it (medians)");
   CLI11_PARSE(app, argc, argv);
 
   auto ctx = GlContext::create();
@@ -138,6 +187,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("# %s\n", (*ctx)->description().c_str());
+  if (giRounds > 0) return giCost(scenes, sizes, frames, giRounds, !noProbeCache);
   std::printf(
       "| scene | triangles | size | m | first frame (ms) | per frame (ms) | time to m (s) | "
       "read-back (ms) |\n");
@@ -145,10 +195,7 @@ int main(int argc, char** argv) {
   for (const auto& scene : scenes) {
     for (const auto& size : sizes) {
       int w = 0, h = 0;
-      if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2) {
-        std::fprintf(stderr, "penumbra-bench: error: bad size '%s'\n", size.c_str());
-        return 1;
-      }
+      if (!parseSize(size, w, h)) return 1;
       auto row = run(scene, w, h, frames, breakdown, !noProbeCache);
       if (!row) {
         std::fprintf(stderr, "penumbra-bench: error: %s\n", row.message().c_str());
