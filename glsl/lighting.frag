@@ -187,16 +187,15 @@ void main() {
   }
 #endif
 
-  // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on the geometric normal
-  // (its own normal texture is not sampled). The base below gets what the coat lets through,
+  // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on its own normal (its
+  // normal map, else the geometric normal). The base below gets what the coat lets through,
   // 1 - coat F(n.v), as the extension defines.
 #if PN_CAPTURE
   float coat = 0.0;
 #else
   float coat = uClearcoat;
 #endif
-  vec3 coatN = normalize(vNormal);
-  if (dot(coatN, n) < 0.0) coatN = -coatN;
+  vec3 coatN = clearcoatNormal();
   float coatNoV = max(dot(coatN, v), 1e-4);
   float coatRoughness = clamp(uClearcoatRoughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   float coatAlpha = coatRoughness * coatRoughness;

@@ -30,18 +30,21 @@ uniform float uAttenuationDistance;
 uniform vec3 uAttenuationColor;
 uniform int uTextureMask;   // bit i: slot i has a texture
 uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
-uniform mat3 uUvTransform[5];
+uniform mat3 uUvTransform[6];
 uniform sampler2D uBaseColorTex;
 uniform sampler2D uMetallicRoughnessTex;
 uniform sampler2D uNormalTex;
 uniform sampler2D uOcclusionTex;
 uniform sampler2D uEmissiveTex;
+uniform sampler2D uClearcoatNormalTex;  // KHR_materials_clearcoat's own normal map
+uniform float uClearcoatNormalScale;
 
 const int SLOT_BASE = 0;
 const int SLOT_MR = 1;
 const int SLOT_NORMAL = 2;
 const int SLOT_OCCLUSION = 3;
 const int SLOT_EMISSIVE = 4;
+const int SLOT_COAT_NORMAL = 5;
 
 in vec3 vWorldPos;
 in vec3 vNormal;
@@ -79,6 +82,26 @@ void alphaTest(float alpha) {
   if (uAlphaMode == 2 && !coverageKept(alpha)) discard;
 }
 
+// The interpolated normal, flipped on the back faces of double-sided materials.
+vec3 geometricNormal() {
+  vec3 n = normalize(vNormal);
+  return gl_FrontFacing ? n : -n;
+}
+
+// A tangent-space normal map applied to n (which geometricNormal() gave).
+vec3 mappedNormal(vec3 n, sampler2D map, int slot, float scale) {
+  if (dot(vTangent.xyz, vTangent.xyz) <= 1e-10) return n;
+  bool flip = !gl_FrontFacing;
+  // Back faces negate the whole tangent frame (as the Khronos sample viewer does).
+  vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
+  if (flip) t = -t;
+  vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+  if (flip) b = -b;
+  vec3 tn = texture(map, slotUv(slot)).xyz * 2.0 - 1.0;
+  tn.xy *= scale;
+  return normalize(mat3(t, b, n) * tn);
+}
+
 SurfaceInputs readSurface(vec3 viewDir) {
   SurfaceInputs s;
   s.baseColor = baseColor();
@@ -100,20 +123,15 @@ SurfaceInputs readSurface(vec3 viewDir) {
     s.occlusion = 1.0 + uOcclusionStrength *
                             (texture(uOcclusionTex, slotUv(SLOT_OCCLUSION)).r - 1.0);
   }
-  vec3 n = normalize(vNormal);
-  // Back faces of double-sided materials shade with the flipped normal.
-  bool flip = !gl_FrontFacing;
-  if (flip) n = -n;
-  if (hasTexture(SLOT_NORMAL) && dot(vTangent.xyz, vTangent.xyz) > 1e-10) {
-    // Back faces negate the whole tangent frame (as the Khronos sample viewer does).
-    vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
-    if (flip) t = -t;
-    vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-    if (flip) b = -b;
-    vec3 tn = texture(uNormalTex, slotUv(SLOT_NORMAL)).xyz * 2.0 - 1.0;
-    tn.xy *= uNormalScale;
-    n = normalize(mat3(t, b, n) * tn);
-  }
-  s.normal = n;
+  s.normal = geometricNormal();
+  if (hasTexture(SLOT_NORMAL)) s.normal = mappedNormal(s.normal, uNormalTex, SLOT_NORMAL, uNormalScale);
   return s;
+}
+
+// The clearcoat's normal: its own normal map if it has one, else the geometric normal.
+vec3 clearcoatNormal() {
+  vec3 n = geometricNormal();
+  return hasTexture(SLOT_COAT_NORMAL)
+             ? mappedNormal(n, uClearcoatNormalTex, SLOT_COAT_NORMAL, uClearcoatNormalScale)
+             : n;
 }

@@ -105,6 +105,54 @@ TEST_F(MaterialExtensionsGLTest, ClearcoatAddsALayerAndKeepsTheFurnace) {
   EXPECT_NEAR(half.g, 0.5f * full.g, 0.02f * full.g);
 }
 
+TEST_F(MaterialExtensionsGLTest, ClearcoatNormalMapTiltsOnlyTheCoat) {
+  // A coat normal map that tilts the normal by about 72 degrees: at the sphere's centre the
+  // coat sees the sky at a grazing angle and reflects more of it (Fresnel), while the base,
+  // on the unmapped normal, does not change.
+  const auto render = [](Material m, bool mapped) {
+    Scene s;
+    if (mapped) {
+      ImageData tilt;  // tangent-space (0.95, 0, 0.31), one texel
+      tilt.name = "tilt";
+      tilt.width = tilt.height = 1;
+      tilt.pixels = {249, 128, 167, 255};
+      s.images.push_back(tilt);
+      m.clearcoatNormalTexture.image = 0;
+    }
+    s.materials.push_back(m);
+    s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
+    Primitive& p = s.meshes[0].primitives[0];
+    for (const glm::vec3& n : p.normals) {
+      const glm::vec3 t = glm::normalize(glm::cross(glm::vec3(0, 1, 0.001f), n));
+      p.tangents.emplace_back(t, 1.0f);
+    }
+    finishScene(s);
+    RenderSettings rs;
+    rs.width = rs.height = kSize;
+    rs.progressive.frames = 8;
+    auto img = renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)),
+                              lookAtCamera({0, 0, 4}, {0, 0, 0}, 20.0f), rs);
+    EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
+    glm::vec3 sum(0.0f);
+    if (!img.ok()) return sum;
+    for (int y = 20; y < 28; ++y) {
+      for (int x = 20; x < 28; ++x)
+        sum += glm::vec3(img->pixel(x, y)[0], img->pixel(x, y)[1], img->pixel(x, y)[2]);
+    }
+    return sum / 64.0f;
+  };
+  Material coated = lambert(glm::vec3(0.0f));
+  coated.specularFactor = 0.0f;  // what is reflected is the coat's
+  coated.clearcoat = 1.0f;
+  const glm::vec3 flat = render(coated, false), tilted = render(coated, true);
+  EXPECT_NEAR(flat.g, 0.045f, 0.01f) << "about F0 near normal incidence";
+  // Schlick at n.v = 0.31: 0.04 + 0.96 (1 - 0.31)^5 = 0.19.
+  EXPECT_GT(tilted.g, 2.5f * flat.g) << "grazing on the tilted coat normal";
+  Material base = lambert(glm::vec3(0.5f));  // no coat: the map changes nothing
+  const glm::vec3 a = render(base, false), b = render(base, true);
+  EXPECT_NEAR(b.g, a.g, 1e-4f);
+}
+
 // Mean radiance of the sphere's central disk (radius 6 px) and of a ring just inside its rim.
 struct CentreAndRim {
   glm::vec3 centre{0.0f}, rim{0.0f};

@@ -180,7 +180,8 @@ TEST(SceneGltfMaterial, IorSpecularClearcoatAndUnlitExtensions) {
   ext({{"KHR_materials_clearcoat",                 // 7
         {{"clearcoatFactor", 0.8},
          {"clearcoatRoughnessFactor", 1.5},
-         {"clearcoatNormalTexture", {{"index", 0}}}}}});
+         {"clearcoatTexture", {{"index", 0}}},
+         {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}});
   b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
   b.push("textures", {{"source", 0}});
   auto scene = b.load();
@@ -207,7 +208,12 @@ TEST(SceneGltfMaterial, IorSpecularClearcoatAndUnlitExtensions) {
   EXPECT_FLOAT_EQ(m[7].clearcoat, 0.8f);
   EXPECT_FLOAT_EQ(m[7].clearcoatRoughness, 1.0f);
   EXPECT_TRUE(hasWarning(*scene, "clearcoatRoughnessFactor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "clearcoatNormalTexture is not sampled"));
+  EXPECT_TRUE(hasWarning(*scene, "clearcoatTexture is not sampled"));
+  // The coat's own normal map is sampled (the lighting shader's spare unit).
+  EXPECT_FALSE(hasWarning(*scene, "clearcoatNormalTexture is not sampled"));
+  EXPECT_GE(m[7].clearcoatNormalTexture.image, 0);
+  EXPECT_FLOAT_EQ(m[7].clearcoatNormalScale, 0.5f);
+  EXPECT_EQ(m[0].clearcoatNormalTexture.image, -1);
   // None of the three is reported as ignored.
   for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }

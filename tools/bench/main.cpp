@@ -3,8 +3,8 @@
 // for the bundled Cornell box and the dense (>100k triangles) model. Shaders are compiled
 // before timing starts (the first-frame figure excludes compilation, as the issue asks).
 // --breakdown also times every pass (prepass, shadow maps, lighting, accumulation, tone map).
-#include <algorithm>
 #include <sys/resource.h>
+#include <algorithm>
 
 #include <chrono>
 #include <cstdio>

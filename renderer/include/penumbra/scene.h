@@ -50,8 +50,13 @@ struct ImageData {
   std::string name;
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> pixels;
-  bool placeholder = false;  // a missing or undecodable image replaced by a 1x1 texel
+  std::vector<uint8_t> pixels;  // RGBA8, row 0 at the top (empty when compressed)
+  bool placeholder = false;     // a missing or undecodable image replaced by a 1x1 texel
+  // A GPU-compressed image (a KTX2 texture the browser build transcoded to a format the device
+  // samples): the GL internal format of its linear variant (the renderer takes the sRGB one
+  // for colour slots), and each mip level's blocks from level 0. 0: `pixels` holds RGBA8.
+  uint32_t compressedFormat = 0;
+  std::vector<std::vector<uint8_t>> compressedLevels;
 };
 
 struct TextureRef {
@@ -88,6 +93,8 @@ struct Material {
   bool unlit = false;                   // KHR_materials_unlit
   float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors; textures ignored)
   float clearcoatRoughness = 0.0f;
+  TextureRef clearcoatNormalTexture;  // the coat's own normal map (tangent space)
+  float clearcoatNormalScale = 1.0f;
   glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (factors; textures ignored): 0 = no sheen
   float sheenRoughness = 0.0f;
   // KHR_materials_transmission (factor): the share of the dielectric base's light that passes

@@ -1,5 +1,7 @@
 #include "gl/texture.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <string>
 
@@ -162,6 +164,43 @@ Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
   applySampler(GL_TEXTURE_2D, desc.sampler);
   PN_TRY(checkError(std::string("allocating a ") + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + " " + formatName(desc.format) + " texture"));
+  return t;
+}
+
+Result<Texture2D> Texture2D::createCompressed(int width, int height, uint32_t internalFormat,
+                                              PixelFormat decoded,
+                                              const std::vector<std::vector<uint8_t>>& levels,
+                                              const SamplerState& sampler) {
+  const TextureDesc desc{.width = width,
+                         .height = height,
+                         .format = decoded,
+                         .levels = static_cast<int>(levels.size()),
+                         .sampler = sampler};
+  PN_TRY(validate(desc, false));
+  clearErrors();
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  Texture2D t;
+  t.handle_ = Handle<deleteTexture>(id);
+  t.desc_ = desc;
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexStorage2D(GL_TEXTURE_2D, desc.levels, internalFormat, width, height);
+  for (int level = 0; level < desc.levels; ++level) {
+    const auto& blocks = levels[static_cast<size_t>(level)];
+    glCompressedTexSubImage2D(GL_TEXTURE_2D, level, 0, 0, std::max(1, width >> level),
+                              std::max(1, height >> level), internalFormat,
+                              static_cast<GLsizei>(blocks.size()), blocks.data());
+  }
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
+  applySampler(GL_TEXTURE_2D, sampler);
+  PN_TRY(checkError("uploading a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " compressed texture (format 0x" +
+                    [&] {
+                      char hex[16];
+                      std::snprintf(hex, sizeof hex, "%X", internalFormat);
+                      return std::string(hex);
+                    }() +
+                    ")"));
   return t;
 }
 

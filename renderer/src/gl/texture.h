@@ -3,6 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
+
+#include <cstdint>
 
 #include "gl/handle.h"
 #include "penumbra/error.h"
@@ -51,6 +54,14 @@ class Texture2D {
   Texture2D() = default;
   // Allocates immutable storage for all levels. Errors on absurd sizes or GL out-of-memory.
   static Result<Texture2D> create(const TextureDesc& desc);
+
+  // A block-compressed texture (`internalFormat` a GL compressed format the context supports,
+  // e.g. ASTC 4x4), one entry of `levels` per mip level from 0, each that level's blocks. Its
+  // format() is the uncompressed one it decodes to (`decoded`).
+  static Result<Texture2D> createCompressed(int width, int height, uint32_t internalFormat,
+                                            PixelFormat decoded,
+                                            const std::vector<std::vector<uint8_t>>& levels,
+                                            const SamplerState& sampler);
 
   // Uploads a whole level; `data` holds width x height pixels of the format's channels.
   void upload(int level, const void* data, DataType type);

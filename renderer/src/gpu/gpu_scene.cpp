@@ -30,6 +30,20 @@ gl::Filter minFilter(int f) {
   }
 }
 
+// The sRGB twin of a compressed format the KTX2 transcoder targets (ASTC 4x4, BC7, ETC2 RGBA).
+uint32_t srgbVariant(uint32_t format) {
+  switch (format) {
+    case 0x93B0:  // COMPRESSED_RGBA_ASTC_4x4_KHR
+      return 0x93D0;
+    case 0x8E8C:  // COMPRESSED_RGBA_BPTC_UNORM_EXT
+      return 0x8E8D;
+    case 0x9278:  // COMPRESSED_RGBA8_ETC2_EAC
+      return 0x9279;
+    default:
+      return format;
+  }
+}
+
 gl::Wrap wrap(int w) {
   switch (w) {
     case 33071:
@@ -95,9 +109,10 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   for (const Material& m : scene.materials) {
     GpuMaterial gm;
     gm.source = m;
-    const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                                 &m.occlusionTexture, &m.emissiveTexture};
-    for (int slot = 0; slot < 5; ++slot) {
+    const TextureRef* refs[kMaterialSlots] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                                              &m.normalTexture,    &m.occlusionTexture,
+                                              &m.emissiveTexture,  &m.clearcoatNormalTexture};
+    for (int slot = 0; slot < kMaterialSlots; ++slot) {
       if (!refs[slot]->valid()) continue;
       const bool srgb = slot == 0 || slot == 4;  // base colour and emissive are sRGB
       auto tex = gs->texture(scene, *refs[slot], srgb);
@@ -164,6 +179,28 @@ Result<const gl::Texture2D*> GpuScene::texture(const Scene& scene, const Texture
   }
   const gl::Filter minF = minFilter(sd.minFilter);
   const bool mips = minF == gl::Filter::LinearMipLinear || minF == gl::Filter::NearestMipNearest;
+  if (img.compressedFormat != 0) {
+    // The levels the file has: no mipmaps can be generated for compressed data.
+    gl::SamplerState sampler{
+        .minFilter = minF,
+        .magFilter = sd.magFilter == 9728 ? gl::Filter::Nearest : gl::Filter::Linear,
+        .wrapS = wrap(sd.wrapS),
+        .wrapT = wrap(sd.wrapT)};
+    const bool full = img.compressedLevels.size() > 1;
+    if (!full && sampler.minFilter == gl::Filter::LinearMipLinear)
+      sampler.minFilter = gl::Filter::Linear;
+    if (!full && sampler.minFilter == gl::Filter::NearestMipNearest)
+      sampler.minFilter = gl::Filter::Nearest;
+    auto tex = gl::Texture2D::createCompressed(
+        img.width, img.height, srgb ? srgbVariant(img.compressedFormat) : img.compressedFormat,
+        srgb ? gl::PixelFormat::SRGB8_ALPHA8 : gl::PixelFormat::RGBA8, img.compressedLevels,
+        sampler);
+    if (!tex) return makeError("image '" + img.name + "': " + tex.message());
+    auto owned = std::make_unique<gl::Texture2D>(std::move(*tex));
+    const gl::Texture2D* raw = owned.get();
+    textures_.emplace(key, std::move(owned));
+    return raw;
+  }
   gl::TextureDesc desc;
   desc.width = std::max(img.width, 1);
   desc.height = std::max(img.height, 1);
@@ -208,21 +245,25 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uIor", m.ior);
   program.set("uAttenuationDistance", m.attenuationDistance);
   program.set("uAttenuationColor", m.attenuationColor);
-  const TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                               &m.occlusionTexture, &m.emissiveTexture};
-  static const char* const kSamplers[5] = {"uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex",
-                                           "uOcclusionTex", "uEmissiveTex"};
+  program.set("uClearcoatNormalScale", m.clearcoatNormalScale);
+  const TextureRef* refs[kMaterialSlots] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                                            &m.normalTexture,    &m.occlusionTexture,
+                                            &m.emissiveTexture,  &m.clearcoatNormalTexture};
+  static const char* const kSamplers[kMaterialSlots] = {"uBaseColorTex", "uMetallicRoughnessTex",
+                                                        "uNormalTex",    "uOcclusionTex",
+                                                        "uEmissiveTex",  "uClearcoatNormalTex"};
   int textureMask = 0, texCoordMask = 0;
-  glm::mat3 transforms[5];
-  for (int slot = 0; slot < 5; ++slot) {
+  glm::mat3 transforms[kMaterialSlots];
+  for (int slot = 0; slot < kMaterialSlots; ++slot) {
+    const int unit = slot == kMaterialSlots - 1 ? kClearcoatNormalUnit : slot;
     transforms[slot] = refs[slot]->transform;
-    program.set(kSamplers[slot], slot);
+    program.set(kSamplers[slot], unit);
     if (gm.textures[slot]) {
       textureMask |= 1 << slot;
       if (refs[slot]->texCoord == 1) texCoordMask |= 1 << slot;
-      gm.textures[slot]->bind(slot);
+      gm.textures[slot]->bind(unit);
     } else {
-      fallback_.bind(slot);
+      fallback_.bind(unit);
     }
   }
   program.set("uTextureMask", textureMask);

@@ -24,10 +24,17 @@ struct GpuPrimitive {
   Bounds bounds;
 };
 
+// Material texture slots; slot i is bound to texture unit i, but for the clearcoat normal map
+// (slot 5), which takes kClearcoatNormalUnit (units 5 to 11 hold the environment, prepass and
+// shadows; passes/limits.h checks it is free).
+inline constexpr int kMaterialSlots = 6;
+inline constexpr int kClearcoatNormalUnit = 12;
+
 struct GpuMaterial {
   Material source;
-  // Texture per slot (base colour, metallic-roughness, normal, occlusion, emissive); null = none.
-  const gl::Texture2D* textures[5] = {nullptr, nullptr, nullptr, nullptr, nullptr};
+  // Texture per slot (base colour, metallic-roughness, normal, occlusion, emissive, clearcoat
+  // normal); null = none.
+  const gl::Texture2D* textures[kMaterialSlots] = {};
 };
 
 struct DrawItem {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gl/program.h"
+#include "gpu/gpu_scene.h"      // kClearcoatNormalUnit
 #include "penumbra/renderer.h"  // kMaxPunctualLights, public: RenderJob warns past it
 
 namespace penumbra::passes {
@@ -25,8 +26,12 @@ inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccu
 // per-view cache of its lookups (passes/lighting_pass.h).
 inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitProbeCacheRoom = 15;
 // Transmissive surfaces' compose pass: the frame's copy, and their own light (in the cache's
-// unit: the compose pass never reads the cache).
-inline constexpr int kUnitBehind = 12, kUnitGlassLight = kUnitProbeCache;
+// units: the compose pass never reads the cache). Unit 12 is the clearcoat's normal map
+// (gpu/gpu_scene.h).
+inline constexpr int kUnitBehind = kUnitProbeCacheRoom, kUnitGlassLight = kUnitProbeCache;
+static_assert(kClearcoatNormalUnit == kUnitPointShadow + kMaxPointShadows &&
+                  kClearcoatNormalUnit < kUnitProbeAtlas,
+              "the clearcoat normal map's unit is taken");
 static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeAtlas,
               "the point shadows overlap the probe volume's units");
 static_assert(kUnitProbeCacheRoom < 16, "WebGL2 guarantees 16 texture units");

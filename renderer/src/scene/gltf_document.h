@@ -142,9 +142,10 @@ enum TextureSlot {
   kMetallicRoughnessSlot,
   kNormalSlot,
   kOcclusionSlot,
-  kEmissiveSlot
+  kEmissiveSlot,
+  kClearcoatNormalSlot,  // KHR_materials_clearcoat's clearcoatNormalTexture
 };
-constexpr int kTextureSlotCount = 5;
+constexpr int kTextureSlotCount = 6;
 
 struct TextureInfoDesc {
   int texture = -1;  // glTF texture index; -1 = none

@@ -151,15 +151,19 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
     img.name = label;
     const std::string why =
         backend::ktx2Available()
-            ? backend::ktx2Transcode({data, static_cast<size_t>(size)}, uint64_t{1} << 28, img)
+            ? backend::ktx2Transcode({data, static_cast<size_t>(size)}, uint64_t{1} << 28,
+                                     std::max(1, ctx.options.maxTextureSize), img)
             : "this build has no KTX2 transcoder";
     if (!why.empty()) {
       ctx.warn(what + ": cannot decode KTX2 (" + why + "); using a 1x1 placeholder");
       return placeholder(label, normalOnly);
     }
-    PN_TRY(ctx.reserve(img.pixels.size(), what + " (" + std::to_string(img.width) + "x" +
-                                              std::to_string(img.height) + " RGBA8)"));
-    return fitToMaxSize(std::move(img), what, ctx);
+    uint64_t bytes = img.pixels.size();
+    for (const auto& level : img.compressedLevels) bytes += level.size();
+    PN_TRY(ctx.reserve(bytes, what + " (" + std::to_string(img.width) + "x" +
+                                  std::to_string(img.height) +
+                                  (img.compressedFormat ? " compressed)" : " RGBA8)")));
+    return img.compressedFormat ? img : fitToMaxSize(std::move(img), what, ctx);
   }
   if (!pngChunksFit(data, size)) {
     ctx.warn(what +
@@ -227,7 +231,8 @@ Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
       if (tex < 0) continue;
       const int source = doc.textures[static_cast<size_t>(tex)].source;
       if (source >= 0)
-        use[static_cast<size_t>(source)] |= slot == kNormalSlot ? kUsedAsNormal : kUsedOther;
+        use[static_cast<size_t>(source)] |=
+            slot == kNormalSlot || slot == kClearcoatNormalSlot ? kUsedAsNormal : kUsedOther;
     }
   }
   std::vector<int> remap(doc.images.size(), -1);
@@ -239,13 +244,16 @@ Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
     scene.images.push_back(std::move(img).value());
   }
 
-  static const char* kSlotNames[] = {"baseColorTexture", "metallicRoughnessTexture",
-                                     "normalTexture", "occlusionTexture", "emissiveTexture"};
+  static const char* kSlotNames[] = {
+      "baseColorTexture", "metallicRoughnessTexture",
+      "normalTexture",    "occlusionTexture",
+      "emissiveTexture",  "extensions.KHR_materials_clearcoat.clearcoatNormalTexture"};
   for (size_t mi = 0; mi < doc.materials.size(); ++mi) {
     const MaterialDesc& md = doc.materials[mi];
     Material m = md.material;
-    TextureRef* refs[] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                          &m.occlusionTexture, &m.emissiveTexture};
+    TextureRef* refs[] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                          &m.normalTexture,    &m.occlusionTexture,
+                          &m.emissiveTexture,  &m.clearcoatNormalTexture};
     for (int slot = 0; slot < kTextureSlotCount; ++slot) {
       const TextureInfoDesc& info = md.textures[static_cast<size_t>(slot)];
       if (info.texture < 0) continue;

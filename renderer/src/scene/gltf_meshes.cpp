@@ -212,12 +212,19 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
     }
   }
 
-  const bool normalMapped =
-      pd.material >= 0 &&
-      doc.materials[static_cast<size_t>(pd.material)].textures[kNormalSlot].texture >= 0;
+  // Tangents for the normal map, else for the clearcoat's own normal map.
+  int mappedSlot = -1;
+  if (pd.material >= 0) {
+    const auto& tex = doc.materials[static_cast<size_t>(pd.material)].textures;
+    if (tex[kNormalSlot].texture >= 0) {
+      mappedSlot = kNormalSlot;
+    } else if (tex[kClearcoatNormalSlot].texture >= 0) {
+      mappedSlot = kClearcoatNormalSlot;
+    }
+  }
+  const bool normalMapped = mappedSlot >= 0;
   if (normalMapped && prim.tangents.empty()) {
-    const int uvSet =
-        doc.materials[static_cast<size_t>(pd.material)].textures[kNormalSlot].texCoord;
+    const int uvSet = doc.materials[static_cast<size_t>(pd.material)].textures[mappedSlot].texCoord;
     const auto& uv = uvSet == 0 ? prim.uv0 : prim.uv1;
     if (uvSet > 1 || uv.empty()) {
       ctx.warn(what + ": the normal map uses TEXCOORD_" + std::to_string(uvSet) +

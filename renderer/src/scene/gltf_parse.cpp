@@ -77,8 +77,7 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
     if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
     m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
     m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
-    for (const char* t :
-         {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}) {
+    for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture"}) {
       if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
     }
   }
@@ -481,6 +480,16 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       }
       parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
       parseTransmission(p, *ext, path + ".extensions", m, ctx);
+      // The coat's own normal map (the lighting shader's one spare texture unit).
+      const std::string cp = path + ".extensions.KHR_materials_clearcoat";
+      if (const json* cc = p.object(*ext, "KHR_materials_clearcoat", path + ".extensions")) {
+        if (const json* t = p.object(*cc, "clearcoatNormalTexture", cp)) {
+          md.textures[kClearcoatNormalSlot] =
+              parseTextureInfo(p, *t, cp + ".clearcoatNormalTexture", nTextures);
+          m.clearcoatNormalScale =
+              static_cast<float>(p.number(*t, "scale", cp + ".clearcoatNormalTexture", 1.0));
+        }
+      }
     }
     doc.materials.push_back(std::move(md));
   });

@@ -15,10 +15,12 @@ namespace penumbra::gltf::backend {
 // Whether this build can transcode KTX2 images (loaded for the current file).
 bool ktx2Available();
 
-// Transcodes the first image (level 0, layer 0, face 0) of a Basis Universal KTX2 file to
-// RGBA8, row 0 at the top, into `out` (pixels, width, height). Returns an empty string, or the
-// transcoder's words for what is wrong. At most `maxPixels` pixels.
-std::string ktx2Transcode(std::span<const uint8_t> src, uint64_t maxPixels, ImageData& out);
+// Transcodes a Basis Universal KTX2 file (layer 0, face 0) into `out`: a block format the GL
+// context samples with every level the file has (out.compressedFormat, compressedLevels), or
+// else RGBA8 level 0 (pixels), row 0 at the top. Returns an empty string, or the transcoder's
+// words for what is wrong. At most `maxPixels` pixels; larger than `maxSize` a side, RGBA8.
+std::string ktx2Transcode(std::span<const uint8_t> src, uint64_t maxPixels, int maxSize,
+                          ImageData& out);
 
 // Whether `bytes` start like a KTX2 file (its 12-byte identifier).
 inline bool isKtx2(std::span<const uint8_t> bytes) {
