@@ -150,18 +150,23 @@ int fullMipCount(int width, int height) {
   return n;
 }
 
-Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
-  PN_TRY(validate(desc, false));
-  clearErrors();
+Texture2D Texture2D::allocate(const TextureDesc& desc, GLenum internalFormat) {
   GLuint id = 0;
   glGenTextures(1, &id);
   Texture2D t;
   t.handle_ = Handle<deleteTexture>(id);
   t.desc_ = desc;
   glBindTexture(GL_TEXTURE_2D, id);
-  glTexStorage2D(GL_TEXTURE_2D, desc.levels, info(desc.format).internal, desc.width, desc.height);
+  glTexStorage2D(GL_TEXTURE_2D, desc.levels, internalFormat, desc.width, desc.height);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
   applySampler(GL_TEXTURE_2D, desc.sampler);
+  return t;
+}
+
+Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
+  PN_TRY(validate(desc, false));
+  clearErrors();
+  Texture2D t = allocate(desc, info(desc.format).internal);
   PN_TRY(checkError(std::string("allocating a ") + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + " " + formatName(desc.format) + " texture"));
   return t;
@@ -178,29 +183,17 @@ Result<Texture2D> Texture2D::createCompressed(int width, int height, uint32_t in
                          .sampler = sampler};
   PN_TRY(validate(desc, false));
   clearErrors();
-  GLuint id = 0;
-  glGenTextures(1, &id);
-  Texture2D t;
-  t.handle_ = Handle<deleteTexture>(id);
-  t.desc_ = desc;
-  glBindTexture(GL_TEXTURE_2D, id);
-  glTexStorage2D(GL_TEXTURE_2D, desc.levels, internalFormat, width, height);
+  Texture2D t = allocate(desc, internalFormat);
   for (int level = 0; level < desc.levels; ++level) {
     const auto& blocks = levels[static_cast<size_t>(level)];
     glCompressedTexSubImage2D(GL_TEXTURE_2D, level, 0, 0, std::max(1, width >> level),
                               std::max(1, height >> level), internalFormat,
                               static_cast<GLsizei>(blocks.size()), blocks.data());
   }
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
-  applySampler(GL_TEXTURE_2D, sampler);
+  char hex[16];
+  std::snprintf(hex, sizeof hex, "%X", internalFormat);
   PN_TRY(checkError("uploading a " + std::to_string(width) + "x" + std::to_string(height) +
-                    " compressed texture (format 0x" +
-                    [&] {
-                      char hex[16];
-                      std::snprintf(hex, sizeof hex, "%X", internalFormat);
-                      return std::string(hex);
-                    }() +
-                    ")"));
+                    " compressed texture (format 0x" + hex + ")"));
   return t;
 }
 

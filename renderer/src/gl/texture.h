@@ -77,6 +77,9 @@ class Texture2D {
   explicit operator bool() const { return static_cast<bool>(handle_); }
 
  private:
+  // Immutable storage with `desc`'s levels and sampler, in `internalFormat`, left bound.
+  static Texture2D allocate(const TextureDesc& desc, GLenum internalFormat);
+
   Handle<deleteTexture> handle_;
   TextureDesc desc_;
 };
