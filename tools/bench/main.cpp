@@ -4,8 +4,8 @@
 // before timing starts (the first-frame figure excludes compilation, as the issue asks).
 // --breakdown also times every pass (prepass, shadow maps, lighting, accumulation, tone map).
 #include <sys/resource.h>
-#include <algorithm>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>

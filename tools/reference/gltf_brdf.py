@@ -22,8 +22,10 @@ The material extensions are rebuilt from the glTF file's own values (use_gltf_br
                               KHR_materials_volume thickness a Refraction BSDF (GGX, the IOR; the
                               mesh is a closed solid for Cycles) and a Volume Absorption with
                               sigma = -ln(attenuationColor) / attenuationDistance; thin-walled a
-                              Transparent BSDF tinted by the base colour (smooth) or a Refraction
-                              BSDF of IOR 1.01 (rough: the lobe around the view ray)
+                              Transparent BSDF tinted by the base colour (Blender has no BSDF for
+                              glTF's rough thin-walled lobe, the reflection lobe mirrored through
+                              the surface: a rough thin-walled material is rendered smooth, with
+                              a warning)
   KHR_materials_clearcoat     mix(material, GGX coat, clearcoat x Fresnel(1.5)) at the geometric
                               normal
   KHR_materials_sheen         a Velvet BSDF of the sheen colour and roughness added over the base,
@@ -31,6 +33,8 @@ The material extensions are rebuilt from the glTF file's own values (use_gltf_br
                               Charlie sheen (the Velvet lobe is Ashikhmin's): the sheen reference
                               is approximate, and the evaluation says so.
 """
+import math
+
 import bpy
 
 
@@ -119,7 +123,6 @@ def replace_principled(material, ext=None):
             _feed(tree, btdf.inputs["Roughness"], inp["Roughness"])
             dist = float(volume.get("attenuationDistance", 0.0))
             if dist > 0.0:
-                import math
                 colour = volume.get("attenuationColor", [1.0, 1.0, 1.0])
                 sigma = [-math.log(max(c, 1e-6)) / dist for c in colour]
                 density = max(max(sigma), 1e-6)
@@ -129,13 +132,11 @@ def replace_principled(material, ext=None):
                 absorb.inputs["Density"].default_value = density
                 out_node = next(l.to_node for l in tree.links if l.from_node == bsdf)
                 tree.links.new(absorb.outputs["Volume"], out_node.inputs["Volume"])
-        elif rough < 0.05:
-            btdf = N.new("ShaderNodeBsdfTransparent")
         else:
-            btdf = N.new("ShaderNodeBsdfRefraction")
-            btdf.distribution = "GGX"
-            btdf.inputs["IOR"].default_value = 1.01
-            _feed(tree, btdf.inputs["Roughness"], inp["Roughness"])
+            if rough >= 0.05 or _source(tree, inp["Roughness"]) is not None:
+                print("warning: %s: rough thin-walled transmission is rendered smooth (Blender has "
+                      "no BSDF for glTF's mirrored reflection lobe)" % material.name)
+            btdf = N.new("ShaderNodeBsdfTransparent")
         _feed(tree, btdf.inputs["Color"], inp["Base Color"])
         if normal is not None and "Normal" in btdf.inputs:
             tree.links.new(normal, btdf.inputs["Normal"])
@@ -144,11 +145,10 @@ def replace_principled(material, ext=None):
         tree.links.new(diffuse.outputs["BSDF"], through.inputs[1])
         tree.links.new(btdf.outputs["BSDF"], through.inputs[2])
         base = through.outputs["Shader"]
-        if material is not None:
-            material.use_screen_refraction = True  # Eevee's refraction
-            material.refraction_depth = thickness
-            material.blend_method = "BLEND"
-            material.show_transparent_back = False
+        material.use_screen_refraction = True  # Eevee's refraction
+        material.refraction_depth = thickness
+        material.blend_method = "BLEND"
+        material.show_transparent_back = False
 
     sheen = ext.get("KHR_materials_sheen")
     if sheen is not None:

@@ -91,7 +91,7 @@ struct Material {
   float specularFactor = 1.0f;          // KHR_materials_specular (factors; textures ignored)
   glm::vec3 specularColorFactor{1.0f};  // KHR_materials_specular
   bool unlit = false;                   // KHR_materials_unlit
-  float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors; textures ignored)
+  float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors and normal map)
   float clearcoatRoughness = 0.0f;
   TextureRef clearcoatNormalTexture;  // the coat's own normal map (tangent space)
   float clearcoatNormalScale = 1.0f;

@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <vector>
 
-#include <cstdint>
-
 #include "gl/handle.h"
 #include "penumbra/error.h"
 

@@ -63,8 +63,8 @@ class GpuScene {
 
   // Sets the material uniforms and binds its textures to units 0..4 on a program in use.
   void bindMaterial(const gl::Program& program, int material) const;
-  // True when a material cuts out (MASK) or covers partially (BLEND): its depth-only passes
-  // need the material's alpha.
+  // True when a material cuts out (MASK), covers partially (BLEND) or transmits light: its
+  // depth-only passes need the material's alpha (and the shadow maps its transmission).
   bool needsAlpha(const DrawItem& item) const {
     const Material& m = material(item.material).source;
     return m.alphaMode != AlphaMode::Opaque || m.transmission > 0.0f;

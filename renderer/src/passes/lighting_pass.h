@@ -87,14 +87,14 @@ class LightingPass {
   // side by side from x = 0, one instanced draw per item) with the PN_CAPTURE variant: both
   // faces of every surface, and where no geometry is, the environment with alpha
   // `skyDistance` (first batch). Extra batches add their light.
+  Status drawCapture(const LightingBatch& batch, const std::vector<CaptureView>& views,
+                     float skyDistance);
   // After a frame's last batch: copies the whole frame (the scene behind transmissive
   // surfaces), then draws those surfaces over it, each showing its own light (drawn with every
   // batch) plus what it transmits of the copy (lighting.frag, PN_TRANSMISSION 2). Uses the
   // first batch's camera and prepass. No-ops without transmissive surfaces.
   Status copyBehind(const LightingBatch& batch);
   Status composeTransmission(const LightingBatch& batch);
-  Status drawCapture(const LightingBatch& batch, const std::vector<CaptureView>& views,
-                     float skyDistance);
 
  private:
   gl::Program* variant(bool occlusion, bool area, bool punctual) const {

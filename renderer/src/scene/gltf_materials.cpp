@@ -146,7 +146,8 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
   }
 
   if (backend::isKtx2({data, static_cast<size_t>(size)})) {
-    // KHR_texture_basisu: transcoded to RGBA8 where the build can (the browser).
+    // KHR_texture_basisu: transcoded where the build can (the browser), to a GPU block format
+    // (kept as it is: compressed data cannot be halved) or to RGBA8.
     ImageData img;
     img.name = label;
     const std::string why =
@@ -163,7 +164,8 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
     PN_TRY(ctx.reserve(bytes, what + " (" + std::to_string(img.width) + "x" +
                                   std::to_string(img.height) +
                                   (img.compressedFormat ? " compressed)" : " RGBA8)")));
-    return img.compressedFormat ? img : fitToMaxSize(std::move(img), what, ctx);
+    if (img.compressedFormat != 0) return img;
+    return fitToMaxSize(std::move(img), what, ctx);
   }
   if (!pngChunksFit(data, size)) {
     ctx.warn(what +
