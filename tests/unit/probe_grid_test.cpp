@@ -63,5 +63,46 @@ TEST(ProbeGridTest, EveryProbeOncePerSweep) {
   }
 }
 
+TEST(ProbeGridTest, CapturesTaperAsTheVolumeSettles) {
+  // 64 probes, two a frame by default: eight a frame while young, two, then one once settled.
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 0.0), 8);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 1.99), 8);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 2.0), 2);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 4.0), 1);
+  EXPECT_EQ(probeCapturesThisFrame(6, 64, 5.0), 3);
+  // Never more than the volume holds, never fewer than one.
+  EXPECT_EQ(probeCapturesThisFrame(2, 1, 0.0), 1);
+  EXPECT_EQ(probeCapturesThisFrame(0, 8, 3.0), 1);
+  EXPECT_EQ(probeCapturesThisFrame(2, 4096, 0.0), 16);
+}
+
+TEST(ProbeGridTest, CacheRemadeEverMoreRarely) {
+  // Simulate a still view of 1024 frames of a 64-probe volume at the default rate.
+  const int count = 64;
+  double captured = 0.0, then = 0.0;
+  int last = -1;
+  int young = 0, settled = 0;
+  for (int frame = 2; frame <= 1024; ++frame) {
+    const double mean = captured / count;
+    if (remakeProbeCache(last < 0 ? -1 : frame - last, mean, then)) {
+      if (last >= 0) {
+        EXPECT_GE(frame - last, mean < 2.0 ? 2 : 8) << frame;
+      }
+      (mean < 2.0 ? young : settled) += 1;
+      last = frame;
+      then = mean;
+    }
+    captured += probeCapturesThisFrame(2, count, mean);
+  }
+  // Every other frame while young (16 frames), then a remake each time the captures grow by a
+  // quarter: logarithmic in the frame count (from 2 to about 17 captures a probe: about 10).
+  EXPECT_GE(young, 6);
+  EXPECT_LE(young, 9);
+  EXPECT_GE(settled, 6);
+  EXPECT_LE(settled, 14);
+  // A new view remakes at once.
+  EXPECT_TRUE(remakeProbeCache(-1, 10.0, 10.0));
+}
+
 }  // namespace
 }  // namespace penumbra::progressive

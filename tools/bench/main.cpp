@@ -48,6 +48,9 @@ struct Row {
   int lightingPasses = 0;
 };
 
+// Settings given with --set KEY=VALUE, applied to every run (A/B of one setting).
+std::vector<std::pair<std::string, std::string>> gExtraSettings;
+
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
                 bool probeCache, bool probeVolume = true) {
   JobRequest request;
@@ -56,6 +59,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
                       {"height", std::to_string(h)},
                       {"frames", std::to_string(frames)}};
   if (!probeVolume) request.settings.push_back({"probeVolume", "false"});
+  for (const auto& kv : gExtraSettings) request.settings.push_back(kv);
   auto job = RenderJob::load(request);
   if (!job) return job.error();
   const Scene* scene = &job->scene;
@@ -179,7 +183,18 @@ int main(int argc, char** argv) {
   app.add_option("--gi-cost", giRounds,
                  "instead of the table: what the probe volume adds per frame, from this many "
                  "interleaved runs with and without it (medians)");
+  std::vector<std::string> extra;
+  app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
+  for (const auto& kv : extra) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      std::fprintf(stderr, "penumbra-bench: error: --set expects KEY=VALUE, got '%s'\n",
+                   kv.c_str());
+      return 1;
+    }
+    gExtraSettings.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+  }
 
   auto ctx = GlContext::create();
   if (!ctx) {

@@ -72,4 +72,17 @@ std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int p
   return out;
 }
 
+int probeCapturesThisFrame(int perFrame, int count, double meanCaptures) {
+  int n = std::max(perFrame, 1);
+  if (meanCaptures < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
+  if (meanCaptures >= 4.0) n = std::max(1, n / 2);
+  return std::max(0, std::min(n, count));
+}
+
+bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen) {
+  if (framesSince < 0) return true;
+  if (meanCaptures < 2.0) return framesSince >= 2;
+  return framesSince >= 8 && (meanCapturesThen < 2.0 || meanCaptures >= 1.25 * meanCapturesThen);
+}
+
 }  // namespace penumbra::progressive

@@ -42,4 +42,19 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts = glm:
 // captured once per count / perCapture captures.
 std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int perCapture);
 
+// How many probes a frame captures, for `perFrame` (the setting) and the volume's mean
+// captures a probe: a young volume (under two) fills faster, two sweeps in about 16 frames, so
+// the frames averaged early do not hold back the converged image; a settled one (four) takes
+// half as many, as its running means then move by a few percent a sweep, less than the
+// frame's own noise. Never more than `count`.
+int probeCapturesThisFrame(int perFrame, int count, double meanCaptures);
+
+// Whether a still view's frame remakes the per-view cache of the volume's lookups, given the
+// frames since the last remake (< 0: none this view) and the mean captures a probe now and at
+// that remake: every other frame while the volume is young (a longer lag would show in the
+// early images); once it is filled, when its captures have grown by a quarter (its running
+// means move by about that share then: ever more rarely as it converges), and no more often
+// than every 8 frames.
+bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen);
+
 }  // namespace penumbra::progressive

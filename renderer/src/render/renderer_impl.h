@@ -68,7 +68,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   bool hasCamera = false;
   bool prepassValid = false;
   int probeCacheFrame = -1;  // the frame that last wrote the probe cache (-1: none this view)
-  static constexpr int kProbeCacheInterval = 8;
+  double probeCacheCaptures = 0.0;  // the volume's mean captures a probe at that frame
   FrameStats stats;
   float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
   std::chrono::steady_clock::time_point passStart;
@@ -296,15 +296,17 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     const bool occlusion = plan.occlusion && (drawPrepass || prepassValid);
     stats.occlusion = occlusion;
-    // The probe volume's per-view cache: remade every kProbeCacheInterval frames of a still
-    // view once the volume is filled (it changes slowly then), read in between; every other
-    // frame while it is young (a longer lag would show in the early images).
+    // The probe volume's per-view cache, read in between remakes (progressive::remakeProbeCache:
+    // ever more rarely as the volume converges).
     const bool probeCache = occlusion && probesOn() && options.probeCache;
-    const int cacheInterval = probes && probes->meanCaptures() >= 2.0 ? kProbeCacheInterval : 2;
+    const double captured = probesOn() ? probes->meanCaptures() : 0.0;
+    const int since = probeCacheFrame < 0 ? -1 : plan.frame - probeCacheFrame;
     const bool writeProbeCache =
-        probeCache && (probeCacheFrame < 0 || plan.frame < probeCacheFrame ||
-                       plan.frame - probeCacheFrame >= cacheInterval);
-    if (writeProbeCache) probeCacheFrame = plan.frame;
+        probeCache && progressive::remakeProbeCache(since, captured, probeCacheCaptures);
+    if (writeProbeCache) {
+      probeCacheFrame = plan.frame;
+      probeCacheCaptures = captured;
+    }
     stats.probeCacheWritten = writeProbeCache;
     // Split this frame's light samples: area samples go in batches of up to kMaxShadowMaps.
     std::vector<const LightSample*> area;
@@ -472,12 +474,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
     // reset (the first image comes as fast as without the volume).
     if (probesOn() &&
         (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
-      // A young volume (under two captures a probe) fills faster: two sweeps in about 16
-      // frames, so the frames averaged early do not hold back the converged image.
-      const int count = probes->grid().count();
-      int n = settings.progressive.probesPerFrame;
-      if (probes->meanCaptures() < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
-      n = std::min(n, count);
+      // How many: progressive::probeCapturesThisFrame (more while the volume is young, fewer
+      // once it has settled).
+      const int n = progressive::probeCapturesThisFrame(
+          settings.progressive.probesPerFrame, probes->grid().count(), probes->meanCaptures());
       for (int i = 0; i < n; ++i) {
         units.push_back([this]() -> Status {
           passes::ProbeCaptureInputs in{
