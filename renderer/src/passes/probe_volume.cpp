@@ -79,6 +79,7 @@ Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
 
 void ProbeVolume::clear() {
   captures_ = 0;
+  lightMapRenders_ = 0;
   lightMapsValid_ = false;
   probeCaptures_.assign(static_cast<size_t>(grid_.count()), 0);
   if (grid_.empty()) return;
@@ -133,8 +134,9 @@ Status ProbeVolume::ensureCaptureTarget() {
 
 // One shadow map per shadowed light (area lights first, then spot and directional ones, so a
 // batch's area samples take its lower slots as LightingPass expects): all of them at the first
-// capture, then one per capture from the capture's point on the light, round robin.
+// capture, then one per `newLightMap` capture from the capture's point on the light, round robin.
 Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
+  if (lightMapsValid_ && !in.newLightMap) return {};
   if (!lightMapsValid_) {
     lightIndex_.clear();
     for (const bool area : {true, false}) {
@@ -152,7 +154,8 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
   const int n = static_cast<int>(lightIndex_.size());
   const int stream = 64;  // coverage stream apart from the frame's maps
   for (int j = 0; j < n; ++j) {
-    if (lightMapsValid_ && static_cast<uint64_t>(j) != captures_ % static_cast<uint64_t>(n)) {
+    if (lightMapsValid_ &&
+        static_cast<uint64_t>(j) != (lightMapRenders_ + 1) % static_cast<uint64_t>(n)) {
       continue;
     }
     const CaptureLight& cl = in.lights[static_cast<size_t>(lightIndex_[static_cast<size_t>(j)])];
@@ -164,6 +167,7 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
         pass.renderLight(slot, *in.scene, l, cl.origin, cl.direction, coverage, stream + j);
     lightDirection_[static_cast<size_t>(j)] = cl.direction;
   }
+  if (lightMapsValid_) ++lightMapRenders_;
   lightMapsValid_ = true;
   return {};
 }

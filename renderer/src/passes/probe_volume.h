@@ -53,6 +53,10 @@ struct ProbeCaptureInputs {
   PointShadowPass* pointShadows = nullptr;
   const RenderSettings* settings = nullptr;
   RenderTargets* targets = nullptr;
+  // Re-render one light's map first (round robin; all of them at the first capture). A frame's
+  // first capture does; its others reuse the maps: each light map is a full shadow pass, which
+  // cost a quarter of a capture, and a probe's mean over frames sees many light points anyway.
+  bool newLightMap = true;
 };
 
 class ProbeVolume {
@@ -80,8 +84,8 @@ class ProbeVolume {
   // Sets the probe uniforms and binds the atlases on a program in use; `enabled` false (or an
   // inactive volume) sets uProbeEnabled 0.
   void bind(const gl::Program& program, bool enabled) const;
-  // Captures the next probe of the grid's order and blends it into the atlases; each call
-  // first re-renders one light's map from lightPoint().
+  // Captures the next probe of the grid's order and blends it into the atlases; first
+  // re-renders one light's map from lightPoint() if `in.newLightMap`.
   Status capture(LightingPass& lighting, const ProbeCaptureInputs& in);
   // Bytes of GPU memory the volume holds (atlases, capture target, shadow maps).
   int64_t memoryBytes() const;
@@ -108,6 +112,7 @@ class ProbeVolume {
   bool lightMapsValid_ = false;
   std::vector<int> probeCaptures_;
   uint64_t captures_ = 0;
+  uint64_t lightMapRenders_ = 0;  // re-renders since the first capture (the round robin)
 };
 
 }  // namespace penumbra::passes

@@ -479,7 +479,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       const int n = progressive::probeCapturesThisFrame(
           settings.progressive.probesPerFrame, probes->grid().count(), probes->meanCaptures());
       for (int i = 0; i < n; ++i) {
-        units.push_back([this]() -> Status {
+        units.push_back([this, i]() -> Status {
           passes::ProbeCaptureInputs in{
               .scene = scene.get(),
               .environment = environment.get(),
@@ -487,7 +487,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
                                               settings),
               .pointShadows = &*pointShadows,
               .settings = &settings,
-              .targets = &*targets};
+              .targets = &*targets,
+              .newLightMap = i == 0};
           PN_TRY(probes->capture(*lighting, in));
           ++stats.probeCaptures;
           endPass(&stats.probeMs);
