@@ -13,7 +13,7 @@
 // convergence (the viewer's own figure). To measure another build
 // of the page (e.g. the main branch's), point PENUMBRA_WEB_DIST at its web/dist and pass
 // --label main.
-import { closeServer, dist, launch, recordConsole, serve, withTimeout } from './harness.mjs';
+import { closeServer, dist, serve, withPage } from './harness.mjs';
 
 const args = process.argv.slice(2);
 const arg = (name, def) => {
@@ -32,12 +32,8 @@ const median = (xs) => {
 };
 
 async function run(server, scene) {
-  const b = await launch({ viewport: { width: size, height: size }, deviceScaleFactor: 1,
-                           launchMs: 30_000 });
-  const lines = [];
-  try {
-    const page = b.context.pages()[0] || (await b.context.newPage());
-    recordConsole(page, lines);
+  const options = { viewport: { width: size, height: size }, deviceScaleFactor: 1, launchMs: 30_000 };
+  return withPage(options, async (page) => {
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html?frames=${frames}` +
                     `&panel=0&adaptive=0&split=1&scene=assets/${scene}/${scene}.json${extraQuery}`,
                     { timeout: 30_000 });
@@ -75,12 +71,7 @@ async function run(server, scene) {
       totalS: (r.state.convergedMs ?? NaN) / 1000,
       frames: last.frame,
     };
-  } catch (e) {
-    e.message += `\n${lines.slice(-20).join('\n')}`;
-    throw e;
-  } finally {
-    await withTimeout(b.close(), 15_000, 'close').catch(() => {});
-  }
+  });
 }
 
 const server = await serve(dist);

@@ -18,7 +18,7 @@
 // - converge: release to the 'converged' event, and the still render size.
 // To measure another build of the page (e.g. the main branch's), point PENUMBRA_WEB_DIST at
 // its web/dist and pass --mode after --label main (unknown URL parameters are ignored there).
-import { closeServer, dist, launch, recordConsole, serve, withTimeout } from './harness.mjs';
+import { closeServer, dist, serve, withPage } from './harness.mjs';
 
 const args = process.argv.slice(2);
 const arg = (name, def) => {
@@ -46,11 +46,7 @@ const pct = (xs, p) => {
 };
 
 async function run(server, config, mode) {
-  const b = await launch({ ...config.context, launchMs: 30_000 });
-  const lines = [];
-  try {
-    const page = b.context.pages()[0] || (await b.context.newPage());
-    recordConsole(page, lines);
+  return withPage({ ...config.context, launchMs: 30_000 }, async (page, b) => {
     // The time of the first progress entry (a presented frame), from navigation start; set up
     // before the page runs so it works with any build of the page (PENUMBRA_WEB_DIST).
     await page.addInitScript(() => {
@@ -128,12 +124,7 @@ async function run(server, config, mode) {
       still: `${r.state.renderWidth}x${r.state.renderHeight} of ${r.state.canvasWidth}x${r.state.canvasHeight}`,
       split: r.state.split, parts: r.state.parts, frameMs: r.state.frameMs,
     };
-  } catch (e) {
-    e.message += `\n${lines.slice(-20).join('\n')}`;
-    throw e;
-  } finally {
-    await withTimeout(b.close(), 15_000, 'close').catch(() => {});
-  }
+  });
 }
 
 const server = await serve(dist);

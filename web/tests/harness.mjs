@@ -106,6 +106,23 @@ export function recordConsole(page, lines = []) {
   return lines;
 }
 
+// Runs fn(page, browser) in a fresh browser launched with `options` (launch()'s); an error
+// carries the page's last 20 console lines, and the browser is closed in any case.
+export async function withPage(options, fn) {
+  const b = await launch(options);
+  const lines = [];
+  try {
+    const page = b.context.pages()[0] || (await b.context.newPage());
+    recordConsole(page, lines);
+    return await fn(page, b);
+  } catch (e) {
+    e.message += `\n${lines.slice(-20).join('\n')}`;
+    throw e;
+  } finally {
+    await withTimeout(b.close(), 15_000, 'close').catch(() => {});
+  }
+}
+
 // RGBA bytes of the canvas (or of an image URL), decoded by the browser.
 export const pixels = (pg, url) => pg.evaluate(async (src) => {
   let source = document.getElementById('canvas');
