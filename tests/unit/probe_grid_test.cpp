@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <tuple>
 
 #include "progressive/probe_grid.h"
 
@@ -65,15 +66,29 @@ TEST(ProbeGridTest, EveryProbeOncePerSweep) {
 
 TEST(ProbeGridTest, CapturesTaperAsTheVolumeSettles) {
   // 64 probes, two a frame by default: eight a frame while young, two, then one once settled.
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 0.0), 8);
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 1.99), 8);
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 2.0), 2);
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 4.0), 1);
-  EXPECT_EQ(probeCapturesThisFrame(6, 64, 5.0), 3);
-  // Never more than the volume holds, never fewer than one.
-  EXPECT_EQ(probeCapturesThisFrame(2, 1, 0.0), 1);
-  EXPECT_EQ(probeCapturesThisFrame(0, 8, 3.0), 1);
-  EXPECT_EQ(probeCapturesThisFrame(2, 4096, 0.0), 16);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 0.0, 2), 8);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 1.99, 9), 8);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 2.0, 17), 2);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 4.0, 90), 1);
+  EXPECT_EQ(probeCapturesThisFrame(6, 128, 5.0, 90), 3);
+  // Never more than the volume holds, never fewer than one before it has settled.
+  EXPECT_EQ(probeCapturesThisFrame(2, 1, 0.0, 2), 1);
+  EXPECT_EQ(probeCapturesThisFrame(0, 8, 3.0, 2), 1);
+  EXPECT_EQ(probeCapturesThisFrame(2, 4096, 0.0, 2), 16);
+  EXPECT_EQ(probeCapturesThisFrame(2, 0, 0.0, 2), 0);
+  // A small settled volume: at most a sweep per 32 frames, spread evenly (16 probes: every
+  // other frame; 6 probes asking for 6 a frame: 6 in 32 frames).
+  for (const auto& [count, perFrame, expected] :
+       {std::tuple{16, 2, 16}, std::tuple{6, 6, 6}, std::tuple{64, 2, 32}}) {
+    int total = 0, most = 0;
+    for (int frame = 1; frame <= 32; ++frame) {
+      const int n = probeCapturesThisFrame(perFrame, count, 4.0, frame);
+      total += n;
+      most = std::max(most, n);
+    }
+    EXPECT_EQ(total, expected) << count;
+    EXPECT_LE(most, 1) << count;
+  }
 }
 
 TEST(ProbeGridTest, CacheRemadeEverMoreRarely) {
@@ -92,7 +107,7 @@ TEST(ProbeGridTest, CacheRemadeEverMoreRarely) {
       last = frame;
       then = mean;
     }
-    captured += probeCapturesThisFrame(2, count, mean);
+    captured += probeCapturesThisFrame(2, count, mean, frame);
   }
   // Every other frame while young (16 frames), then a remake each time the captures grow by a
   // quarter: logarithmic in the frame count (from 2 to about 17 captures a probe: about 10).

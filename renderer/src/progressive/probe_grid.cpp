@@ -72,11 +72,15 @@ std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int p
   return out;
 }
 
-int probeCapturesThisFrame(int perFrame, int count, double meanCaptures) {
-  int n = std::max(perFrame, 1);
-  if (meanCaptures < 2.0) n = std::max(n, std::min((count + 7) / 8, 16));
-  if (meanCaptures >= 4.0) n = std::max(1, n / 2);
-  return std::max(0, std::min(n, count));
+int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int frame) {
+  if (count <= 0) return 0;
+  const int n = std::max(perFrame, 1);
+  if (meanCaptures < 2.0) return std::min(std::max(n, std::min((count + 7) / 8, 16)), count);
+  if (meanCaptures < 4.0) return std::min(n, count);
+  // Settled: a fractional rate, spread evenly over the frames.
+  const double rate = std::min(static_cast<double>(std::max(1, n / 2)), count / 32.0);
+  const double f = std::max(frame, 1);
+  return static_cast<int>(std::floor(rate * f) - std::floor(rate * (f - 1.0)));
 }
 
 bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen) {

@@ -42,12 +42,14 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts = glm:
 // captured once per count / perCapture captures.
 std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int perCapture);
 
-// How many probes a frame captures, for `perFrame` (the setting) and the volume's mean
-// captures a probe: a young volume (under two) fills faster, two sweeps in about 16 frames, so
-// the frames averaged early do not hold back the converged image; a settled one (four) takes
-// half as many, as its running means then move by a few percent a sweep, less than the
-// frame's own noise. Never more than `count`.
-int probeCapturesThisFrame(int perFrame, int count, double meanCaptures);
+// How many probes frame `frame` (1-based) captures, for `perFrame` (the setting) and the
+// volume's mean captures a probe: a young volume (under two) fills faster, two sweeps in about
+// 16 frames, so the frames averaged early do not hold back the converged image; a settled one
+// (four) takes half as many, as its running means then move by a few percent a sweep, less
+// than the frame's own noise, and no more than a sweep per 32 frames (a small volume would
+// otherwise recapture each probe every few frames, each capture drawing the whole scene six
+// times): a fractional rate spread evenly over the frames. Never more than `count`.
+int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int frame);
 
 // Whether a still view's frame remakes the per-view cache of the volume's lookups, given the
 // frames since the last remake (< 0: none this view) and the mean captures a probe now and at

@@ -476,8 +476,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
         (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
       // How many: progressive::probeCapturesThisFrame (more while the volume is young, fewer
       // once it has settled).
-      const int n = progressive::probeCapturesThisFrame(
-          settings.progressive.probesPerFrame, probes->grid().count(), probes->meanCaptures());
+      const int n = progressive::probeCapturesThisFrame(settings.progressive.probesPerFrame,
+                                                        probes->grid().count(),
+                                                        probes->meanCaptures(), plan.frame);
       for (int i = 0; i < n; ++i) {
         units.push_back([this, i]() -> Status {
           passes::ProbeCaptureInputs in{
