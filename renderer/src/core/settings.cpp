@@ -126,7 +126,8 @@ const SettingInfo kSchema[] = {
      "length)",
      PN_FIELD(progressive.probeDensity, float)},
     {"probesPerFrame", "progressive", "probesPerFrame", "--probes-per-frame", SettingType::Int, 1,
-     64, false, false, false, true, "probe captures per intermediate frame (more while the volume is young, half as many "
+     64, false, false, false, true,
+     "probe captures per intermediate frame (more while the volume is young, half as many "
      "once every probe has four, at most a sweep per 32 frames then)",
      PN_FIELD(progressive.probesPerFrame, int)},
     {"seed", "progressive", "seed", "--seed", SettingType::UInt, 0, 4294967295.0, false, false,

@@ -137,6 +137,7 @@ Status ProbeVolume::ensureCaptureTarget() {
 // capture, then one per `newLightMap` capture from the capture's point on the light, round robin.
 Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
   if (lightMapsValid_ && !in.newLightMap) return {};
+  if (lightMapsValid_) ++lightMapRenders_;  // this re-render's light: 1, 2, ... mod n
   if (!lightMapsValid_) {
     lightIndex_.clear();
     for (const bool area : {true, false}) {
@@ -155,7 +156,7 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
   const int stream = 64;  // coverage stream apart from the frame's maps
   for (int j = 0; j < n; ++j) {
     if (lightMapsValid_ &&
-        static_cast<uint64_t>(j) != (lightMapRenders_ + 1) % static_cast<uint64_t>(n)) {
+        static_cast<uint64_t>(j) != lightMapRenders_ % static_cast<uint64_t>(n)) {
       continue;
     }
     const CaptureLight& cl = in.lights[static_cast<size_t>(lightIndex_[static_cast<size_t>(j)])];
@@ -167,7 +168,6 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
         pass.renderLight(slot, *in.scene, l, cl.origin, cl.direction, coverage, stream + j);
     lightDirection_[static_cast<size_t>(j)] = cl.direction;
   }
-  if (lightMapsValid_) ++lightMapRenders_;
   lightMapsValid_ = true;
   return {};
 }

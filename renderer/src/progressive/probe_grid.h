@@ -42,6 +42,11 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts = glm:
 // captured once per count / perCapture captures.
 std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int perCapture);
 
+// Mean captures a probe below which the volume is young (it fills faster, and its per-view
+// cache is remade more often), and from which it has settled (it captures fewer).
+inline constexpr double kProbeYoungCaptures = 2.0;
+inline constexpr double kProbeSettledCaptures = 4.0;
+
 // How many probes frame `frame` (1-based) captures, for `perFrame` (the setting) and the
 // volume's mean captures a probe: a young volume (under two) fills faster, two sweeps in about
 // 16 frames, so the frames averaged early do not hold back the converged image; a settled one

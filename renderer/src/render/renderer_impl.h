@@ -469,11 +469,12 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     // Probe captures, the frame's last units, one probe each (a frame dropped part-way keeps
     // the captures it made; the web viewer's time budget sees probe-sized parts): every frame
-    // but the first, which captures only while the volume is young (so it still fills while a
+    // but the first, which captures only until the volume has settled (so it still fills while a
     // viewer orbits and frame 1 is all it draws), and never before the first frame after a
     // reset (the first image comes as fast as without the volume).
     if (probesOn() &&
-        (plan.frame >= 2 || (probes->captures() > 0 && probes->meanCaptures() < 4.0))) {
+        (plan.frame >= 2 ||
+         (probes->captures() > 0 && probes->meanCaptures() < progressive::kProbeSettledCaptures))) {
       // How many: progressive::probeCapturesThisFrame (more while the volume is young, fewer
       // once it has settled).
       const int n = progressive::probeCapturesThisFrame(settings.progressive.probesPerFrame,
