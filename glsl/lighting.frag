@@ -137,7 +137,7 @@ void main() {
   SurfaceInputs s = readSurface(v);
   vec3 n = s.normal;
   float NoV = max(dot(n, v), 1e-4);
-  if (uUnlit != 0) {
+  if (PN_UNLIT != 0 && uUnlit != 0) {
     // KHR_materials_unlit: the base colour is the radiance (once, in the first batch).
     fragColor = vec4(s.baseColor.rgb * uEnvWeight,
                      uEnvWeight * (uAlphaMode == 2 && uCoverageFrame < 0 ? s.baseColor.a : 1.0));
@@ -193,20 +193,20 @@ void main() {
 #if PN_CAPTURE
   float coat = 0.0;
 #else
-  float coat = uClearcoat;
+  float coat = PN_CLEARCOAT == 0 ? 0.0 : uClearcoat;
 #endif
-  vec3 coatN = clearcoatNormal();
+  vec3 coatN = PN_CLEARCOAT == 0 ? n : clearcoatNormal();
   float coatNoV = max(dot(coatN, v), 1e-4);
   float coatRoughness = clamp(uClearcoatRoughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   float coatAlpha = coatRoughness * coatRoughness;
-  float baseScale = 1.0 - coat * F_Schlick(vec3(0.04), coatNoV).x;
+  float baseScale = PN_CLEARCOAT == 0 ? 1.0 : 1.0 - coat * F_Schlick(vec3(0.04), coatNoV).x;
 
   // KHR_materials_sheen: a Charlie lobe over the base, which receives what the sheen does not
   // reflect (glTF's albedo scaling, 1 - max(sheenColor) E(n.v)). Under the coat, like the base.
 #if PN_CAPTURE
   vec3 sheenColor = vec3(0.0);
 #else
-  vec3 sheenColor = uSheenColor;
+  vec3 sheenColor = PN_SHEEN == 0 ? vec3(0.0) : uSheenColor;
 #endif
   float sheenMax = max(sheenColor.r, max(sheenColor.g, sheenColor.b));
   float sheenA = sheenAlpha(uSheenRoughness);

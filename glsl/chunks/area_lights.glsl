@@ -60,29 +60,29 @@ float areaLightIrradiance(AreaLight L, vec3 p, vec3 n) {
   float sum = 0.0;
   bool haveExit = false, haveEnter = false;
   vec3 exitPt = vec3(0.0), enterPt = vec3(0.0);
+  // Branch-free clipping: each edge keeps its part above the horizon (a or b replaced by the
+  // crossing x) and costs one edge term. A SIMD rasterizer runs both sides of a branch on a
+  // per-pixel value, so the former three-way branch evaluated three terms an edge.
   for (int i = 0; i < DISK_SEGMENTS; ++i) {
     if (i >= count) break;
     cs = vec2(cs.x * step.x - cs.y * step.y, cs.x * step.y + cs.y * step.x);
     vec3 b = i + 1 == count ? first : c + cs.x * A + cs.y * B;
     float db = dot(b, n);
-    if (da >= 0.0 && db >= 0.0) {
-      sum += edgeTerm(normalize(a), normalize(b), n);
-    } else if (da >= 0.0 || db >= 0.0) {
-      vec3 x = a + (b - a) * (da / (da - db));
-      if (da >= 0.0) {
-        sum += edgeTerm(normalize(a), normalize(x), n);
-        exitPt = x;
-        haveExit = true;
-      } else {
-        sum += edgeTerm(normalize(x), normalize(b), n);
-        enterPt = x;
-        haveEnter = true;
-      }
-    }
+    bool aUp = da >= 0.0, bUp = db >= 0.0;
+    float denom = da - db;
+    vec3 x = a + (b - a) * clamp(da / (abs(denom) > 1e-20 ? denom : 1e-20), 0.0, 1.0);
+    float term = edgeTerm(normalize(aUp ? a : x), normalize(bUp ? b : x), n);
+    sum += aUp || bUp ? term : 0.0;
+    bool exits = aUp && !bUp, enters = bUp && !aUp;
+    exitPt = exits ? x : exitPt;
+    enterPt = enters ? x : enterPt;
+    haveExit = haveExit || exits;
+    haveEnter = haveEnter || enters;
     a = b;
     da = db;
   }
-  if (haveExit && haveEnter) sum += edgeTerm(normalize(exitPt), normalize(enterPt), n);
+  float closing = edgeTerm(normalize(exitPt), normalize(enterPt), n);
+  sum += haveExit && haveEnter ? closing : 0.0;
   return 0.5 * abs(sum);
 }
 

@@ -1,6 +1,16 @@
 // glTF metallic-roughness material inputs: factors, the five texture slots (each with its UV
 // set and KHR_texture_transform matrix), vertex colour, alpha modes, normal mapping.
 #include "chunks/coverage.glsl"
+// Programs specialised per material (lighting.frag's; gpu/gpu_scene.h materialDefines) know
+// which textures and layers it has: a software rasterizer runs both sides of a branch even on
+// a uniform, so what a material lacks would cost every pixel. The others (-1) read uniforms.
+#ifndef PN_MATERIAL_KEYED
+#define PN_TEXTURES -1
+#define PN_CLEARCOAT -1
+#define PN_SHEEN -1
+#define PN_UNLIT -1
+#define PN_ALPHA_MODE -1
+#endif
 uniform vec4 uBaseColorFactor;
 uniform float uMetallicFactor;
 uniform float uRoughnessFactor;
@@ -62,7 +72,9 @@ struct SurfaceInputs {
   vec3 normal;  // world, facing the viewer for double-sided materials
 };
 
-bool hasTexture(int slot) { return (uTextureMask & (1 << slot)) != 0; }
+bool hasTexture(int slot) {
+  return PN_TEXTURES < 0 ? (uTextureMask & (1 << slot)) != 0 : (PN_TEXTURES & (1 << slot)) != 0;
+}
 
 vec2 slotUv(int slot) {
   vec2 uv = (uTexCoordMask & (1 << slot)) != 0 ? vUv1 : vUv0;
@@ -78,8 +90,12 @@ vec4 baseColor() {
 // MASK cuts out below the cutoff; BLEND keeps the fragment with probability alpha (when
 // stochastic coverage is on). The same test runs in every pass that draws the surface.
 void alphaTest(float alpha) {
+#if PN_ALPHA_MODE < 0 || PN_ALPHA_MODE == 1
   if (uAlphaMode == 1 && alpha < uAlphaCutoff) discard;
+#endif
+#if PN_ALPHA_MODE < 0 || PN_ALPHA_MODE == 2
   if (uAlphaMode == 2 && !coverageKept(alpha)) discard;
+#endif
 }
 
 // The interpolated normal, flipped on the back faces of double-sided materials.
@@ -106,7 +122,7 @@ SurfaceInputs readSurface(vec3 viewDir) {
   SurfaceInputs s;
   s.baseColor = baseColor();
   alphaTest(s.baseColor.a);
-  if (uAlphaMode == 0) s.baseColor.a = 1.0;
+  if (PN_ALPHA_MODE == 0 || uAlphaMode == 0) s.baseColor.a = 1.0;
   s.metallic = uMetallicFactor;
   s.perceptualRoughness = uRoughnessFactor;
   if (hasTexture(SLOT_MR)) {

@@ -112,16 +112,24 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
     const TextureRef* refs[kMaterialSlots] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
                                               &m.normalTexture,    &m.occlusionTexture,
                                               &m.emissiveTexture,  &m.clearcoatNormalTexture};
+    bool has[kMaterialSlots] = {};
     for (int slot = 0; slot < kMaterialSlots; ++slot) {
       if (!refs[slot]->valid()) continue;
       const bool srgb = slot == 0 || slot == 4;  // base colour and emissive are sRGB
       auto tex = gs->texture(scene, *refs[slot], srgb);
       if (!tex) return tex.error();
       gm.textures[slot] = *tex;
+      has[slot] = true;
     }
+    gm.features = materialFeatures(m, has);
     gs->materials_.push_back(std::move(gm));
   }
-  gs->materials_.push_back(GpuMaterial{});
+  {
+    GpuMaterial fallbackMaterial;
+    const bool none[kMaterialSlots] = {};
+    fallbackMaterial.features = materialFeatures(fallbackMaterial.source, none);
+    gs->materials_.push_back(std::move(fallbackMaterial));
+  }
   auto fallback =
       gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
   if (!fallback) return fallback.error();
@@ -162,7 +170,35 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       (transmits ? gs->transmissive_ : blend ? gs->blended_ : gs->opaque_).push_back(item);
     }
   }
+  // Grouped by material features: each group is drawn with one specialised program. (BLEND
+  // surfaces keep the scene's order; frame 1 sorts them back to front anyway.)
+  const auto byFeatures = [&gs](const DrawItem& a, const DrawItem& b) {
+    return gs->material(a.material).features < gs->material(b.material).features;
+  };
+  std::stable_sort(gs->opaque_.begin(), gs->opaque_.end(), byFeatures);
+  std::stable_sort(gs->transmissive_.begin(), gs->transmissive_.end(), byFeatures);
   return gs;
+}
+
+uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialSlots]) {
+  uint32_t f = 0;
+  for (int slot = 0; slot < kMaterialSlots; ++slot) {
+    if (hasTexture[slot]) f |= 1u << slot;
+  }
+  if (m.clearcoat > 0.0f) f |= 1u << 6;
+  if (glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f) f |= 1u << 7;
+  if (m.unlit) f |= 1u << 8;
+  f |= static_cast<uint32_t>(m.alphaMode) << 9;
+  return f;
+}
+
+gl::Defines materialDefines(uint32_t features) {
+  return {{"PN_MATERIAL_KEYED", "1"},
+          {"PN_TEXTURES", std::to_string(features & 63u)},
+          {"PN_CLEARCOAT", (features >> 6) & 1u ? "1" : "0"},
+          {"PN_SHEEN", (features >> 7) & 1u ? "1" : "0"},
+          {"PN_UNLIT", (features >> 8) & 1u ? "1" : "0"},
+          {"PN_ALPHA_MODE", std::to_string((features >> 9) & 3u)}};
 }
 
 Result<const gl::Texture2D*> GpuScene::texture(const Scene& scene, const TextureRef& ref,

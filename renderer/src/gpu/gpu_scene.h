@@ -35,7 +35,17 @@ struct GpuMaterial {
   // Texture per slot (base colour, metallic-roughness, normal, occlusion, emissive, clearcoat
   // normal); null = none.
   const gl::Texture2D* textures[kMaterialSlots] = {};
+  // What the material uses (materialFeatures): the shading programs are specialised on it.
+  uint32_t features = 0;
 };
+
+// A material's features as bits: its texture slots (bits 0-5), clearcoat (6), sheen (7),
+// unlit (8) and alpha mode (bits 9-10).
+uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialSlots]);
+// The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:
+// a software rasterizer runs both sides of a branch even on a uniform, so a material's absent
+// clearcoat, sheen or textures would otherwise cost every pixel.
+gl::Defines materialDefines(uint32_t features);
 
 struct DrawItem {
   const GpuPrimitive* primitive = nullptr;

@@ -23,38 +23,6 @@ glm::mat3 environmentLookup(const RenderSettings& s) {
 Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   LightingPass pass;
   pass.library_ = &library;
-  // Every variant up front: no frame pays for a shader compile.
-  for (int v = 0; v < 8; ++v) {
-    auto p = library.program("mesh.vert", "lighting.frag",
-                             {{"PN_OCCLUSION", (v & 1) ? "1" : "0"},
-                              {"PN_AREA", (v & 2) ? "1" : "0"},
-                              {"PN_PUNCTUAL", (v & 4) ? "1" : "0"},
-                              {"PN_CAPTURE", "0"},
-                              {"PN_PROBE_CACHE_WRITE", "0"},
-                              {"PN_TRANSMISSION", "0"}});
-    if (!p) return p.error();
-    pass.variants_[v] = *p;
-  }
-  for (int v = 0; v < 4; ++v) {
-    auto p = library.program("mesh.vert", "lighting.frag",
-                             {{"PN_OCCLUSION", "0"},
-                              {"PN_AREA", (v & 1) ? "1" : "0"},
-                              {"PN_PUNCTUAL", (v & 2) ? "1" : "0"},
-                              {"PN_CAPTURE", "1"},
-                              {"PN_PROBE_CACHE_WRITE", "0"},
-                              {"PN_TRANSMISSION", "0"}});
-    if (!p) return p.error();
-    pass.captureVariants_[v] = *p;
-  }
-  auto cache = library.program("mesh.vert", "lighting.frag",
-                               {{"PN_OCCLUSION", "0"},
-                                {"PN_AREA", "0"},
-                                {"PN_PUNCTUAL", "0"},
-                                {"PN_CAPTURE", "0"},
-                                {"PN_PROBE_CACHE_WRITE", "1"},
-                                {"PN_TRANSMISSION", "0"}});
-  if (!cache) return cache.error();
-  pass.cacheWrite_ = *cache;
   auto depth = library.program("mesh.vert", "prepass.frag");
   if (!depth) return depth.error();
   pass.depthOnly_ = *depth;
@@ -69,23 +37,50 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   return pass;
 }
 
-Result<gl::Program*> LightingPass::transmissionProgram(int mode, bool occlusion, bool area,
-                                                       bool punctual) {
-  gl::Program*& slot =
-      mode == 2 ? composeVariants_[occlusion ? 1 : 0]
-                : transmissionVariants_[(occlusion ? 1 : 0) | (area ? 2 : 0) | (punctual ? 4 : 0)];
-  if (slot) return slot;
-  // Built on first use: most scenes have no transmissive surface.
-  auto p = library_->program("mesh.vert", "lighting.frag",
-                             {{"PN_OCCLUSION", occlusion ? "1" : "0"},
-                              {"PN_AREA", area ? "1" : "0"},
-                              {"PN_PUNCTUAL", punctual ? "1" : "0"},
-                              {"PN_CAPTURE", "0"},
-                              {"PN_PROBE_CACHE_WRITE", "0"},
-                              {"PN_TRANSMISSION", mode == 2 ? "2" : "1"}});
+Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
+  const uint64_t key = (static_cast<uint64_t>(pass) << 32) | features;
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+  const auto flag = [pass](uint32_t bit) { return std::string((pass & bit) ? "1" : "0"); };
+  gl::Defines defines = {{"PN_OCCLUSION", flag(kOcclusion)},
+                         {"PN_AREA", flag(kArea)},
+                         {"PN_PUNCTUAL", flag(kPunctual)},
+                         {"PN_CAPTURE", flag(kCapture)},
+                         {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
+                         {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
+                                             : (pass & kTransmitOwn)   ? "1"
+                                                                       : "0"}};
+  for (auto& d : materialDefines(features)) defines.push_back(std::move(d));
+  auto p = library_->program("mesh.vert", "lighting.frag", defines);
   if (!p) return p.error();
-  slot = *p;
-  return slot;
+  programs_.emplace(key, *p);
+  return *p;
+}
+
+Status LightingPass::drawByMaterial(uint32_t pass, const GpuScene& scene,
+                                    const std::vector<DrawItem>& items, gl::PipelineState state,
+                                    const std::function<void(const gl::Program&)>& setup,
+                                    int instances) {
+  std::vector<const gl::Program*> ready;  // set up in this call
+  const gl::Program* current = nullptr;
+  for (const DrawItem& item : items) {
+    auto p = program(pass, scene.material(item.material).features);
+    if (!p) return p.error();
+    if (*p != current) {
+      current = *p;
+      if (std::find(ready.begin(), ready.end(), current) == ready.end()) {
+        setup(*current);
+        ready.push_back(current);
+      } else {
+        current->use();
+      }
+    }
+    if (instances > 0) {
+      drawItemBothSides(*current, scene, item, state, instances);
+    } else {
+      drawItem(*current, scene, item, true, state);
+    }
+  }
+  return {};
 }
 
 void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
@@ -232,8 +227,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
                                  float skyDistance) {
   if (!b.scene || views.empty()) return {};
   const glm::mat3 envRotation = environmentLookup(*b.settings);
-  const gl::Program& p = *captureVariants_[(b.area.empty() ? 0 : 1) | (b.punctual.empty() ? 0 : 2)];
-  setUniforms(p, b, envRotation);
+  const uint32_t pass = kCapture | passBits(false, !b.area.empty(), !b.punctual.empty());
   gl::PipelineState state;
   if (!b.first) {
     state.depthTest = gl::DepthTest::LessEqual;
@@ -252,12 +246,15 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
   }
   const int faceSize = views.front().size;
   gl::setViewport(0, 0, 6 * faceSize, faceSize);
-  p.use();
-  p.set("uFaceViewProj", std::span<const glm::mat4>(faceViewProj));
-  p.set("uCaptureFaceSize", faceSize);
-  p.set("uViewOrigin", views.front().camera.viewOrigin);
-  drawItemsBothSides(p, *b.scene, b.scene->opaque(), state, 6);
-  if (b.coverageFrame >= 0) drawItemsBothSides(p, *b.scene, b.scene->blended(), state, 6);
+  const auto setup = [&](const gl::Program& p) {
+    setUniforms(p, b, envRotation);
+    p.set("uFaceViewProj", std::span<const glm::mat4>(faceViewProj));
+    p.set("uCaptureFaceSize", faceSize);
+    p.set("uViewOrigin", views.front().camera.viewOrigin);
+  };
+  PN_TRY(drawByMaterial(pass, *b.scene, b.scene->opaque(), state, setup, 6));
+  if (b.coverageFrame >= 0)
+    PN_TRY(drawByMaterial(pass, *b.scene, b.scene->blended(), state, setup, 6));
   if (b.first) {
     for (const CaptureView& view : views) {
       gl::setViewport(view.x, view.y, view.size, view.size);
@@ -304,25 +301,27 @@ Status LightingPass::draw(const LightingBatch& b) {
     gl::clearBufferFloat(1, 0, 0, 0, 0);
     LightingBatch writing = b;
     writing.readProbeCache = false;  // the targets being written are not sampled
-    const gl::Program& cw = *cacheWrite_;
-    setUniforms(cw, writing, envRotation);
+    const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
     gl::PipelineState cacheState;
     cacheState.depthTest = gl::DepthTest::LessEqual;
     cacheState.depthWrite = false;
-    drawItems(cw, *b.scene, b.scene->opaque(), true, cacheState);
-    if (b.coverageFrame >= 0) drawItems(cw, *b.scene, b.scene->blended(), true, cacheState);
+    PN_TRY(drawByMaterial(kCacheWrite, *b.scene, b.scene->opaque(), cacheState, setupCache));
+    if (b.coverageFrame >= 0) {
+      PN_TRY(drawByMaterial(kCacheWrite, *b.scene, b.scene->blended(), cacheState, setupCache));
+    }
     b.targets->frame.framebuffer.bind();
   }
-  const gl::Program& p = *variant(b.occlusion, !b.area.empty(), !b.punctual.empty());
-  setUniforms(p, b, envRotation);
+  const uint32_t pass = passBits(b.occlusion, !b.area.empty(), !b.punctual.empty());
+  const auto setup = [&](const gl::Program& p) { setUniforms(p, b, envRotation); };
   gl::PipelineState opaque;
   opaque.depthTest = gl::DepthTest::LessEqual;
   opaque.depthWrite = false;
   if (!b.first) opaque.blend = gl::Blend::Additive;
-  drawItems(p, *b.scene, b.scene->opaque(), true, opaque);
+  PN_TRY(drawByMaterial(pass, *b.scene, b.scene->opaque(), opaque, setup));
   // Stochastic coverage: BLEND surfaces are drawn like opaque ones, minus the fragments this
   // frame does not keep, in every batch (the same decisions each time).
-  if (b.coverageFrame >= 0) drawItems(p, *b.scene, b.scene->blended(), true, opaque);
+  if (b.coverageFrame >= 0)
+    PN_TRY(drawByMaterial(pass, *b.scene, b.scene->blended(), opaque, setup));
   if (b.first) drawBackground(b, envRotation);
   if (b.first && b.coverageFrame < 0 && !b.scene->blended().empty()) {
     const CameraMatrices& cm = *b.camera;
@@ -335,8 +334,9 @@ Status LightingPass::draw(const LightingBatch& b) {
       };
       return far(x.center) > far(y.center);
     });
-    p.use();  // the background pass left its own program bound
-    drawItems(p, *b.scene, sorted, true, {.depthWrite = false, .blend = gl::Blend::Alpha});
+    // (The background pass left its own program bound: setup makes each current again.)
+    PN_TRY(drawByMaterial(pass, *b.scene, sorted, {.depthWrite = false, .blend = gl::Blend::Alpha},
+                          setup));
   }
   if (!b.scene->transmissive().empty()) {
     // Transmissive surfaces' own light, batch by batch, beside the frame (which keeps showing
@@ -348,16 +348,14 @@ Status LightingPass::draw(const LightingBatch& b) {
       gl::apply({});
       gl::clearBufferFloat(0, 0, 0, 0, 0);
     }
-    auto tp = transmissionProgram(1, b.occlusion, !b.area.empty(), !b.punctual.empty());
-    if (!tp) return tp.error();
     LightingBatch glass = b;
     glass.readProbeCache = false;  // the cache holds what lies behind
-    setUniforms(**tp, glass, envRotation);
     gl::PipelineState own;
     own.depthTest = gl::DepthTest::LessEqual;
     own.depthWrite = false;
     own.blend = gl::Blend::Additive;
-    drawItems(**tp, *b.scene, b.scene->transmissive(), true, own);
+    PN_TRY(drawByMaterial(kTransmitOwn | pass, *b.scene, b.scene->transmissive(), own,
+                          [&](const gl::Program& p) { setUniforms(p, glass, envRotation); }));
     b.targets->frame.framebuffer.bind();
   }
   return {};
@@ -376,23 +374,23 @@ Status LightingPass::composeTransmission(const LightingBatch& b) {
   RenderTargets& t = *b.targets;
   t.frame.framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
-  auto cp = transmissionProgram(2, b.occlusion, false, false);
-  if (!cp) return cp.error();
-  const gl::Program& p = **cp;
   LightingBatch compose = b;
   compose.readProbeCache = false;
-  setUniforms(p, compose, environmentLookup(*b.settings));
-  t.behind.color.bind(kUnitBehind);
-  t.glassLight.color.bind(kUnitGlassLight);
-  p.set("uBehind", kUnitBehind);
-  p.set("uGlassLight", kUnitGlassLight);
-  p.set("uBehindDepthValid", b.occlusion ? 1 : 0);
+  const glm::mat3 envRotation = environmentLookup(*b.settings);
   // The nearest transmissive layer replaces the pixel: its own light (all layers') plus what
   // it transmits of the copy.
   gl::PipelineState state;
   state.depthTest = gl::DepthTest::LessEqual;
-  drawItems(p, *b.scene, b.scene->transmissive(), true, state);
-  return {};
+  return drawByMaterial(kTransmitCompose | passBits(b.occlusion, false, false), *b.scene,
+                        b.scene->transmissive(), state, [&](const gl::Program& p) {
+                          setUniforms(p, compose, envRotation);
+                          // After setUniforms, which binds the probe cache's units (shared).
+                          t.behind.color.bind(kUnitBehind);
+                          t.glassLight.color.bind(kUnitGlassLight);
+                          p.set("uBehind", kUnitBehind);
+                          p.set("uGlassLight", kUnitGlassLight);
+                          p.set("uBehindDepthValid", b.occlusion ? 1 : 0);
+                        });
 }
 
 }  // namespace penumbra::passes

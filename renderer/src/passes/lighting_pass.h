@@ -3,10 +3,13 @@
 // kMaxShadowMaps area-light samples: the first batch adds the environment (with this frame's
 // occlusion rays), punctual lights, emission and the background, and alpha-blends BLEND
 // surfaces in frame 1; later batches add their light on top. Program variants (PN_OCCLUSION,
-// PN_AREA, PN_PUNCTUAL) keep frame 1 a plain forward pass; all are compiled up front.
+// PN_AREA, PN_PUNCTUAL) keep frame 1 a plain forward pass, and each is specialised on the
+// features of the material it draws (built on first use).
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -97,24 +100,35 @@ class LightingPass {
   Status composeTransmission(const LightingBatch& batch);
 
  private:
-  gl::Program* variant(bool occlusion, bool area, bool punctual) const {
-    return variants_[(occlusion ? 1 : 0) | (area ? 2 : 0) | (punctual ? 4 : 0)];
+  // lighting.frag variants: a pass's bits and a material's features (gpu/gpu_scene.h) make
+  // one program, built on first use.
+  enum PassBits : uint32_t {
+    kOcclusion = 1,
+    kArea = 2,
+    kPunctual = 4,
+    kCapture = 8,
+    kCacheWrite = 16,
+    kTransmitOwn = 32,      // PN_TRANSMISSION 1
+    kTransmitCompose = 64,  // PN_TRANSMISSION 2
+  };
+  static uint32_t passBits(bool occlusion, bool area, bool punctual) {
+    return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u);
   }
+  Result<gl::Program*> program(uint32_t pass, uint32_t features);
+  // Draws items, each with the program of its pass and material; `setup` makes a program
+  // current and sets the batch's uniforms on it the first time this call uses it. With
+  // `instances` > 0 both faces of every item are drawn that many times (probe captures).
+  Status drawByMaterial(uint32_t pass, const GpuScene& scene, const std::vector<DrawItem>& items,
+                        gl::PipelineState state,
+                        const std::function<void(const gl::Program&)>& setup, int instances = 0);
   void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
                       const CameraMatrices& camera, float blur, float alpha);
 
-  // mode 1: a transmissive surface's own light (per batch); 2: the compose pass.
-  Result<gl::Program*> transmissionProgram(int mode, bool occlusion, bool area, bool punctual);
-
   gl::ShaderLibrary* library_ = nullptr;
-  gl::Program* variants_[8] = {};
-  gl::Program* transmissionVariants_[8] = {};
-  gl::Program* composeVariants_[2] = {};
-  gl::Program* captureVariants_[4] = {};  // area | punctual << 1
+  std::unordered_map<uint64_t, gl::Program*> programs_;  // (pass << 32) | features
   gl::Program* depthOnly_ = nullptr;
-  gl::Program* cacheWrite_ = nullptr;  // PN_PROBE_CACHE_WRITE
   std::optional<FullscreenPass> background_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
 };

@@ -2,33 +2,39 @@
 
 namespace penumbra::passes {
 
+void drawItem(const gl::Program& program, const GpuScene& scene, const DrawItem& item,
+              bool material, gl::PipelineState state) {
+  const Material& m = scene.material(item.material).source;
+  state.cull = m.doubleSided ? gl::Cull::None : gl::Cull::Back;
+  state.frontFaceClockwise = item.mirrored;
+  gl::apply(state);
+  GpuScene::bindTransform(program, item);
+  if (material) scene.bindMaterial(program, item.material);
+  item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+}
+
 void drawItems(const gl::Program& program, const GpuScene& scene,
                const std::vector<DrawItem>& items, bool material, gl::PipelineState state) {
-  for (const DrawItem& item : items) {
-    const Material& m = scene.material(item.material).source;
-    state.cull = m.doubleSided ? gl::Cull::None : gl::Cull::Back;
-    state.frontFaceClockwise = item.mirrored;
-    gl::apply(state);
-    GpuScene::bindTransform(program, item);
-    if (material) scene.bindMaterial(program, item.material);
-    item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
-  }
+  for (const DrawItem& item : items) drawItem(program, scene, item, material, state);
+}
+
+void drawItemBothSides(const gl::Program& program, const GpuScene& scene, const DrawItem& item,
+                       gl::PipelineState state, int instances) {
+  const Material& m = scene.material(item.material).source;
+  state.cull = gl::Cull::None;
+  state.frontFaceClockwise = item.mirrored;  // gl_FrontFacing must still mean the front
+  gl::apply(state);
+  program.set("uSingleSided", m.doubleSided ? 0 : 1);
+  GpuScene::bindTransform(program, item);
+  scene.bindMaterial(program, item.material);
+  item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->indexCount,
+                                    instances);
 }
 
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
                         const std::vector<DrawItem>& items, gl::PipelineState state,
                         int instances) {
-  state.cull = gl::Cull::None;
-  for (const DrawItem& item : items) {
-    const Material& m = scene.material(item.material).source;
-    state.frontFaceClockwise = item.mirrored;  // gl_FrontFacing must still mean the front
-    gl::apply(state);
-    program.set("uSingleSided", m.doubleSided ? 0 : 1);
-    GpuScene::bindTransform(program, item);
-    scene.bindMaterial(program, item.material);
-    item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->indexCount,
-                                      instances);
-  }
+  for (const DrawItem& item : items) drawItemBothSides(program, scene, item, state, instances);
 }
 
 }  // namespace penumbra::passes

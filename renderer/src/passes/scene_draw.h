@@ -11,12 +11,16 @@
 
 namespace penumbra::passes {
 
+void drawItem(const gl::Program& program, const GpuScene& scene, const DrawItem& item,
+              bool material, gl::PipelineState state);
 void drawItems(const gl::Program& program, const GpuScene& scene,
                const std::vector<DrawItem>& items, bool material, gl::PipelineState state);
 
 // Both faces of every item, with uSingleSided telling the shader whether a back face is the
 // inside of a closed surface (a probe capture's test for probes buried in geometry), each
 // drawn `instances` times (a capture's cube faces).
+void drawItemBothSides(const gl::Program& program, const GpuScene& scene, const DrawItem& item,
+                       gl::PipelineState state, int instances = 1);
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,
                         const std::vector<DrawItem>& items, gl::PipelineState state,
                         int instances = 1);
