@@ -9,6 +9,7 @@
 //                 signed distance to the probe
 //   PN_PROBE_CACHE_WRITE  the per-view cache of the probe volume's lookups (passes/lighting_pass.h):
 //                 no light, only what probeIrradiance() returns for the pixel, every few frames
+//   PN_PROBES     the probe volume is on; PN_PROBE_CACHE: its per-view cache is read
 //   PN_TRANSMISSION  1: a transmissive surface's own light (its diffuse base scaled by
 //                 1 - transmission); 2: composes that light with what it transmits
 #include "chunks/brdf.glsl"
@@ -79,7 +80,6 @@ out vec4 fragColor;
 // jittered sample lands on another surface than the cached one (silhouettes): of the pixel and
 // its four neighbours, the best match. No lookup falls back to the probes: a software
 // rasterizer would run that code for every pixel (it skips only branches on uniforms).
-uniform int uProbeCacheValid;
 uniform sampler2D uProbeCache;
 uniform sampler2D uProbeCacheRoom;
 
@@ -274,14 +274,14 @@ void main() {
     vec4 room = vec4(0.0);
     vec4 pv = vec4(0.0);
 #if PN_OCCLUSION
-    if (uProbeCacheValid != 0) {
+    if (PN_PROBE_CACHE != 0) {
       probeCacheRead(cacheKey, cacheTolerance, pv, room);
     } else
 #endif
-    if (uProbeEnabled != 0 && (!diffuseHit || glossy)) {
+    if (PN_PROBES != 0 && (!diffuseHit || glossy)) {
       pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
     }
-    if (uProbeEnabled != 0) {
+    if (PN_PROBES != 0) {
 #if PN_CAPTURE
       // Captures build on what the volume holds, nothing else: each adds a bounce.
       irradiance = pv.rgb;

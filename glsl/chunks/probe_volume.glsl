@@ -9,7 +9,7 @@
 // through walls), as in DDGI (Majercik et al., JCGT 2019) and Eevee's irradiance grid.
 #include "chunks/octahedral.glsl"
 
-uniform int uProbeEnabled;
+// PN_PROBES (a generated define, 1 while the volume is on) guards every lookup.
 uniform vec3 uProbeOrigin;
 uniform vec3 uProbeSpacing;
 uniform vec3 uProbeCounts;  // whole numbers

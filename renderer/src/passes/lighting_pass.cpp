@@ -37,6 +37,13 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   return pass;
 }
 
+uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
+  const bool probes = b.probes && b.probes->active();
+  const bool cache = b.readProbeCache && b.probes && b.targets->probeCache.color;
+  return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
+         (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u);
+}
+
 Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
   const uint64_t key = (static_cast<uint64_t>(pass) << 32) | features;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
@@ -46,6 +53,8 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
                          {"PN_PUNCTUAL", flag(kPunctual)},
                          {"PN_CAPTURE", flag(kCapture)},
                          {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
+                         {"PN_PROBES", flag(kProbes)},
+                         {"PN_PROBE_CACHE", flag(kProbeCache)},
                          {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
                                              : (pass & kTransmitOwn)   ? "1"
                                                                        : "0"}};
@@ -112,12 +121,10 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   if (b.probes) {
     b.probes->bind(p, true);
   } else {
-    p.set("uProbeEnabled", 0);
     dummy_.bind(kUnitProbeAtlas);
     p.set("uProbeAtlas", kUnitProbeAtlas);
   }
   const bool readCache = b.readProbeCache && b.probes && b.targets->probeCache.color;
-  p.set("uProbeCacheValid", readCache ? 1 : 0);
   (readCache ? b.targets->probeCache.color : dummy_).bind(kUnitProbeCache);
   (readCache ? b.targets->probeCacheRoom : dummy_).bind(kUnitProbeCacheRoom);
   p.set("uProbeCache", kUnitProbeCache);
@@ -227,7 +234,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
                                  float skyDistance) {
   if (!b.scene || views.empty()) return {};
   const glm::mat3 envRotation = environmentLookup(*b.settings);
-  const uint32_t pass = kCapture | passBits(false, !b.area.empty(), !b.punctual.empty());
+  const uint32_t pass = kCapture | passBits(b, false, !b.area.empty(), !b.punctual.empty());
   gl::PipelineState state;
   if (!b.first) {
     state.depthTest = gl::DepthTest::LessEqual;
@@ -302,16 +309,17 @@ Status LightingPass::draw(const LightingBatch& b) {
     LightingBatch writing = b;
     writing.readProbeCache = false;  // the targets being written are not sampled
     const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
+    const uint32_t cachePass = kCacheWrite | passBits(writing, false, false, false);
     gl::PipelineState cacheState;
     cacheState.depthTest = gl::DepthTest::LessEqual;
     cacheState.depthWrite = false;
-    PN_TRY(drawByMaterial(kCacheWrite, *b.scene, b.scene->opaque(), cacheState, setupCache));
+    PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
     if (b.coverageFrame >= 0) {
-      PN_TRY(drawByMaterial(kCacheWrite, *b.scene, b.scene->blended(), cacheState, setupCache));
+      PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->blended(), cacheState, setupCache));
     }
     b.targets->frame.framebuffer.bind();
   }
-  const uint32_t pass = passBits(b.occlusion, !b.area.empty(), !b.punctual.empty());
+  const uint32_t pass = passBits(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
   const auto setup = [&](const gl::Program& p) { setUniforms(p, b, envRotation); };
   gl::PipelineState opaque;
   opaque.depthTest = gl::DepthTest::LessEqual;
@@ -354,7 +362,9 @@ Status LightingPass::draw(const LightingBatch& b) {
     own.depthTest = gl::DepthTest::LessEqual;
     own.depthWrite = false;
     own.blend = gl::Blend::Additive;
-    PN_TRY(drawByMaterial(kTransmitOwn | pass, *b.scene, b.scene->transmissive(), own,
+    const uint32_t glassPass =
+        kTransmitOwn | passBits(glass, b.occlusion, !b.area.empty(), !b.punctual.empty());
+    PN_TRY(drawByMaterial(glassPass, *b.scene, b.scene->transmissive(), own,
                           [&](const gl::Program& p) { setUniforms(p, glass, envRotation); }));
     b.targets->frame.framebuffer.bind();
   }
@@ -381,7 +391,7 @@ Status LightingPass::composeTransmission(const LightingBatch& b) {
   // it transmits of the copy.
   gl::PipelineState state;
   state.depthTest = gl::DepthTest::LessEqual;
-  return drawByMaterial(kTransmitCompose | passBits(b.occlusion, false, false), *b.scene,
+  return drawByMaterial(kTransmitCompose | passBits(compose, b.occlusion, false, false), *b.scene,
                         b.scene->transmissive(), state, [&](const gl::Program& p) {
                           setUniforms(p, compose, envRotation);
                           // After setUniforms, which binds the probe cache's units (shared).

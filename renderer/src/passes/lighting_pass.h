@@ -110,10 +110,11 @@ class LightingPass {
     kCacheWrite = 16,
     kTransmitOwn = 32,      // PN_TRANSMISSION 1
     kTransmitCompose = 64,  // PN_TRANSMISSION 2
+    kProbes = 128,          // PN_PROBES: the probe volume is on
+    kProbeCache = 256,      // PN_PROBE_CACHE: its per-view cache is read
   };
-  static uint32_t passBits(bool occlusion, bool area, bool punctual) {
-    return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u);
-  }
+  // The bits of batch b's own probe state and the given terms.
+  static uint32_t passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual);
   Result<gl::Program*> program(uint32_t pass, uint32_t features);
   // Draws items, each with the program of its pass and material; `setup` makes a program
   // current and sets the batch's uniforms on it the first time this call uses it. With

@@ -104,7 +104,6 @@ glm::vec2 ProbeVolume::lightPoint(uint32_t seed) const {
 
 void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
   const bool on = enabled && active();
-  p.set("uProbeEnabled", on ? 1 : 0);
   p.set("uProbeAtlas", kUnitProbeAtlas);
   if (!on) return;
   atlas_.bind(kUnitProbeAtlas);
