@@ -112,6 +112,19 @@ float probeCacheKey() {
 }
 #endif
 
+#if PN_PUNCTUAL
+// The specular lobe of a punctual sample: only the forms this batch's kinds need.
+vec3 punctualLobe(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
+#if (PN_PUNCTUAL_KINDS & 4) == 0
+  return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
+#elif (PN_PUNCTUAL_KINDS & 11) == 0
+  return diskSpecular(n, v, f0, f90, alpha, disk);
+#else
+  return punctualSpecular(n, v, l, f0, f90, alpha, disk);
+#endif
+}
+#endif
+
 void main() {
   vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
 #if PN_OCCLUSION
@@ -361,8 +374,15 @@ void main() {
     vec3 l;
     float attenuation = 1.0;
     int type = int(uPunctualPos[i].w);
+    // PN_PUNCTUAL_KINDS (passes/lighting_pass.h punctualKinds) compiles only the kinds of
+    // light this batch has: a software rasterizer would run every kind's code for every light.
+#if (PN_PUNCTUAL_KINDS & 3) != 0
     if (type == 2) {
+#endif
+#if (PN_PUNCTUAL_KINDS & 28) != 0
       l = -uPunctualDir[i].xyz;
+#endif
+#if (PN_PUNCTUAL_KINDS & 16) != 0
       if (uPunctualCone[i].x < 0.0) {
         // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
         // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
@@ -375,7 +395,13 @@ void main() {
                  diffuseColor;
         continue;
       }
-    } else {
+#endif
+#if (PN_PUNCTUAL_KINDS & 15) == 0
+      continue;  // sky-shadow samples only
+#endif
+#if (PN_PUNCTUAL_KINDS & 3) != 0
+    }
+    if (type != 2) {
       vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
       float d2 = max(dot(toLight, toLight), 1e-8);
       l = toLight * inversesqrt(d2);
@@ -385,22 +411,25 @@ void main() {
         float x = d2 / (range * range);
         attenuation *= saturate(1.0 - x * x);
       }
+#if (PN_PUNCTUAL_KINDS & 2) != 0
       if (type == 1) {
         float cd = dot(uPunctualDir[i].xyz, -l);
         float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
         attenuation *= a * a;
       }
+#endif
     }
+#endif
     float NoL = dot(n, l);
     if (NoL <= 0.0 && (coat <= 0.0 || dot(coatN, l) <= 0.0)) continue;
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
     vec3 e = uPunctualColor[i] * attenuation;
     vec3 base = diffuseColor * (max(NoL, 0.0) * INV_PI) +
-                punctualSpecular(n, v, l, f0, f90, alpha, uPunctualDisk[i]);
+                punctualLobe(n, v, l, f0, f90, alpha, uPunctualDisk[i]);
     if (sheenMax > 0.0) base = sheenScale * base + sheenColor * sheenBrdfCos(n, v, l, sheenA);
     color += e * baseScale * base;
     if (coat > 0.0) {
-      color += e * coat * punctualSpecular(coatN, v, l, vec3(0.04), 1.0, coatAlpha, uPunctualDisk[i]);
+      color += e * coat * punctualLobe(coatN, v, l, vec3(0.04), 1.0, coatAlpha, uPunctualDisk[i]);
     }
   }
 

@@ -38,8 +38,7 @@ vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float
 // lobe widened and renormalised as for area lights: the jittered sample direction l only
 // places the shadow, and its point highlight would converge to a scatter of dots on smooth
 // surfaces, not to the disk.
-vec3 punctualSpecular(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
-  if (disk.w <= 0.0) return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
+vec3 diskSpecular(vec3 n, vec3 v, vec3 f0, float f90, float alpha, vec4 disk) {
   vec3 centre = -disk.xyz;
   vec3 r = reflect(-v, n);
   vec3 toRay = dot(centre, r) * r - centre;
@@ -47,6 +46,11 @@ vec3 punctualSpecular(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, v
   float widened = min(1.0, alpha + 0.5 * disk.w);
   float norm = (alpha / widened) * (alpha / widened);
   return specularBrdf(n, v, lr, f0, f90, alpha, norm) * max(dot(n, lr), 0.0);
+}
+
+vec3 punctualSpecular(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
+  if (disk.w <= 0.0) return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
+  return diskSpecular(n, v, f0, f90, alpha, disk);
 }
 
 vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float norm) {

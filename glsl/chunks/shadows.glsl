@@ -39,7 +39,9 @@ float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
 
 // index >= 0: shadow map `index`; -1: unshadowed; <= -2: point-light cube map -2 - index.
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
-#if PN_PUNCTUAL
+#if PN_PUNCTUAL && PN_POINT_SHADOWS
+  // Only where the batch has point-light cube maps: the two cube lookups would run for every
+  // shadow test otherwise (llvmpipe runs both sides of a branch).
   if (index <= -2) return pointShadowVisibility(-2 - index, worldPos, normal);
 #endif
   if (index < 0) return 1.0;

@@ -18,6 +18,15 @@ glm::mat3 environmentLookup(const RenderSettings& s) {
       glm::rotate(glm::mat4(1.0f), glm::radians(-s.environmentRotation), glm::vec3(0, 1, 0)));
 }
 
+// tan(angular radius) of a directional light's disk (0: a point at infinity, or not
+// directional).
+float directionalDisk(const Light& l, const RenderSettings& s) {
+  if (l.type != LightType::Directional) return 0.0f;
+  const float diameter =
+      l.angularDiameter > 0.0f ? l.angularDiameter : glm::radians(s.progressive.directionalAngle);
+  return std::tan(0.5f * diameter);
+}
+
 }  // namespace
 
 Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
@@ -37,11 +46,32 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   return pass;
 }
 
+uint32_t LightingPass::punctualKinds(const LightingBatch& b) {
+  uint32_t kinds = 0;
+  for (const PunctualDraw& d : b.punctual) {
+    const Light& l = *d.light;
+    if (d.skyLoss) {
+      kinds |= 16;
+    } else if (l.type == LightType::Point) {
+      kinds |= 1;
+    } else if (l.type == LightType::Spot) {
+      kinds |= 2;
+    } else {
+      kinds |= directionalDisk(l, *b.settings) > 0.0f ? 4 : 8;
+    }
+  }
+  return kinds;
+}
+
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
   const bool probes = b.probes && b.probes->active();
   const bool cache = b.readProbeCache && b.probes && b.targets->probeCache.color;
+  const bool cubeMaps =
+      punctual && std::any_of(b.punctual.begin(), b.punctual.end(),
+                              [](const PunctualDraw& d) { return d.pointShadow >= 0; });
   return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
-         (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u);
+         (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u) | (cubeMaps ? kPointShadows : 0u) |
+         (punctual ? punctualKinds(b) << kKindsShift : 0u);
 }
 
 Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
@@ -55,6 +85,8 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
                          {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
                          {"PN_PROBES", flag(kProbes)},
                          {"PN_PROBE_CACHE", flag(kProbeCache)},
+                         {"PN_POINT_SHADOWS", flag(kPointShadows)},
+                         {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & 31u)},
                          {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
                                              : (pass & kTransmitOwn)   ? "1"
                                                                        : "0"}};
@@ -182,12 +214,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
     ppos.emplace_back(l.position, type);
     pdir.emplace_back(pd.direction, l.range);
-    const float diameter = l.angularDiameter > 0.0f
-                               ? l.angularDiameter
-                               : glm::radians(b.settings->progressive.directionalAngle);
-    disk.emplace_back(l.direction, l.type == LightType::Directional && !pd.skyLoss
-                                       ? std::tan(0.5f * diameter)
-                                       : 0.0f);
+    disk.emplace_back(l.direction, pd.skyLoss ? 0.0f : directionalDisk(l, *b.settings));
     if (pd.pointShadow >= 0) {
       punctualShadow.push_back(-2 - pd.pointShadow);  // chunks/shadows.glsl's encoding
       pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;

@@ -112,7 +112,12 @@ class LightingPass {
     kTransmitCompose = 64,  // PN_TRANSMISSION 2
     kProbes = 128,          // PN_PROBES: the probe volume is on
     kProbeCache = 256,      // PN_PROBE_CACHE: its per-view cache is read
+    kPointShadows = 512,    // PN_POINT_SHADOWS: a punctual sample has a point light's cube map
+    kKindsShift = 10,       // PN_PUNCTUAL_KINDS (punctualKinds) from this bit on
   };
+  // The kinds of punctual samples in a batch: 1 point, 2 spot, 4 directional with a disk,
+  // 8 directional without, 16 sky-shadow samples. Only their code is compiled.
+  static uint32_t punctualKinds(const LightingBatch& b);
   // The bits of batch b's own probe state and the given terms.
   static uint32_t passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual);
   Result<gl::Program*> program(uint32_t pass, uint32_t features);
