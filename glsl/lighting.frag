@@ -9,6 +9,9 @@
 //                 signed distance to the probe
 //   PN_PROBE_CACHE_WRITE  the per-view cache of the probe volume's lookups (passes/lighting_pass.h):
 //                 no light, only what probeIrradiance() returns for the pixel, every few frames
+//   PN_LIGHT_CACHE_WRITE  n > 0: the per-view cache of n area lights' unshadowed shading
+//                 (passes/lighting_pass.h), a layer each, scaled by uLightCacheWeight
+//   PN_LIGHT_CACHE  area-light samples read that cache instead of evaluating their light
 //   PN_PROBES     the probe volume is on; PN_PROBE_CACHE: its per-view cache is read
 //   PN_TRANSMISSION  1: a transmissive surface's own light (its diffuse base scaled by
 //                 1 - transmission); 2: composes that light with what it transmits
@@ -69,6 +72,15 @@ uniform mat4 uView;
 layout(location = 0) out vec4 cacheIrradiance;  // rgb irradiance, a +-depth key (- : no probes)
 layout(location = 1) out vec4 cacheRoom;        // the room's radiance toward r, and its share
 vec4 fragColor;                                 // unused here
+#elif PN_LIGHT_CACHE_WRITE
+uniform float uLightCacheWeight;
+// Light i's shading per unit radiance, times the weight; alpha the weight: the share of the
+// pixel's cached positions that saw a surface.
+layout(location = 0) out vec4 lightCache0;
+layout(location = 1) out vec4 lightCache1;
+layout(location = 2) out vec4 lightCache2;
+layout(location = 3) out vec4 lightCache3;
+vec4 fragColor;  // unused here
 #else
 out vec4 fragColor;
 #endif
@@ -106,6 +118,55 @@ void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
 }
 #endif
 
+#if PN_LIGHT_CACHE
+// The area lights' per-view cache: a light's unshadowed shading, the mean over the view's
+// first jittered frames, so only the samples' shadow tests remain per frame. Its mean over the
+// pixel stands in for the shading at this frame's sub-pixel position: exact wherever the
+// pixel's samples agree on visibility, a ratio estimate (Heitz et al. 2018) at silhouettes.
+uniform highp sampler2DArray uLightCache;
+uniform int uAreaLayer[MAX_AREA];  // the cache layer of each sample's light
+#endif
+
+#if PN_AREA
+AreaLight areaLightOf(int i) {
+  AreaLight L;
+  L.position = uAreaPos[i];
+  L.direction = uAreaDir[i];
+  L.right = uAreaRight[i];
+  L.up = uAreaUp[i];
+  L.size = uAreaShape[i].xy;
+  L.disk = uAreaShape[i].z > 0.5;
+  return L;
+}
+
+// Light L's unshadowed shading at the pixel per unit radiance: what each of its samples
+// multiplies by its shadow-map visibility.
+vec3 areaShading(AreaLight L, vec3 n, vec3 v, vec3 f0, float f90, float alpha,
+                 vec3 diffuseColor, float baseScale, float sheenScale, vec3 sheenColor,
+                 float sheenA, float coat, vec3 coatN, float coatAlpha) {
+  float irradiance;
+  vec3 specular;
+  evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
+  // Sheen: its lobe is broad, so the light's irradiance times the lobe's value D V toward the
+  // light's centre (irradiance already holds the cosine).
+  float sheenLight = 0.0;
+  if (max(sheenColor.r, max(sheenColor.g, sheenColor.b)) > 0.0 && irradiance > 0.0) {
+    vec3 lc = normalize(L.position - vWorldPos);
+    float NoLc = dot(n, lc);
+    sheenLight = NoLc > 0.0 ? sheenBrdfCos(n, v, lc, sheenA) / NoLc : 0.0;
+  }
+  vec3 coatSpecular = vec3(0.0);
+  if (coat > 0.0) {
+    float coatIrradiance;
+    evaluateAreaLight(L, vWorldPos, coatN, v, vec3(0.04), 1.0, coatAlpha, coatIrradiance,
+                      coatSpecular);
+  }
+  return baseScale * (sheenScale * (diffuseColor * irradiance * INV_PI + specular) +
+                      sheenColor * (sheenLight * irradiance)) +
+         coat * coatSpecular;
+}
+#endif
+
 #if PN_OCCLUSION || PN_PROBE_CACHE_WRITE
 float probeCacheKey() {
   return -(uView * vec4(vWorldPos, 1.0)).z / uProbeDiagonal;
@@ -136,6 +197,9 @@ void main() {
 #if PN_PROBE_CACHE_WRITE
   cacheIrradiance = vec4(0.0);
   cacheRoom = vec4(0.0);
+#endif
+#if PN_LIGHT_CACHE_WRITE
+  lightCache0 = lightCache1 = lightCache2 = lightCache3 = vec4(0.0);  // unlit: no light
 #endif
 #if PN_CAPTURE
   if (int(gl_FragCoord.x) / uCaptureFaceSize != vFace) discard;  // another face's square
@@ -225,6 +289,32 @@ void main() {
   float sheenA = sheenAlpha(uSheenRoughness);
   float sheenE = sheenMax > 0.0 ? sheenAlbedo(NoV, uSheenRoughness) : 0.0;
   float sheenScale = 1.0 - sheenMax * sheenE;
+#if PN_LIGHT_CACHE_WRITE
+  // One layer a light (PN_LIGHT_CACHE_WRITE of them; outputs take constant indices).
+  lightCache0 = vec4(areaShading(areaLightOf(0), n, v, f0, f90, alpha, diffuseColor, baseScale,
+                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
+                         uLightCacheWeight,
+                     uLightCacheWeight);
+#if PN_LIGHT_CACHE_WRITE > 1
+  lightCache1 = vec4(areaShading(areaLightOf(1), n, v, f0, f90, alpha, diffuseColor, baseScale,
+                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
+                         uLightCacheWeight,
+                     uLightCacheWeight);
+#endif
+#if PN_LIGHT_CACHE_WRITE > 2
+  lightCache2 = vec4(areaShading(areaLightOf(2), n, v, f0, f90, alpha, diffuseColor, baseScale,
+                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
+                         uLightCacheWeight,
+                     uLightCacheWeight);
+#endif
+#if PN_LIGHT_CACHE_WRITE > 3
+  lightCache3 = vec4(areaShading(areaLightOf(3), n, v, f0, f90, alpha, diffuseColor, baseScale,
+                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
+                         uLightCacheWeight,
+                     uLightCacheWeight);
+#endif
+  return;
+#endif
 #if PN_TRANSMISSION == 2
   // Under the coat and the sheen like the base; the surface's own light was drawn per batch.
   // A smooth surface (at the shading's roughness floor) transmits without scattering: GGX's
@@ -261,6 +351,14 @@ void main() {
         skyLossWeight = 0.0;
         diffuseHit = true;
       }
+#if PN_BROAD_LOBE
+      // A dielectric's broad specular lobe (gpu_scene.h materialFeatures) is occluded like the
+      // diffuse one: a second march would cost as much for a few per cent of the light.
+      if (diffuseHit) {
+        prefiltered = irradiance * INV_PI;
+        specularHit = true;
+      }
+#else
       // Specular: one GGX half vector, reflected.
       vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
       vec3 sDir = reflect(-v, h);
@@ -269,6 +367,7 @@ void main() {
         prefiltered = hit;
         specularHit = true;
       }
+#endif
     }
 #endif
     // The probe volume answers what the screen-space rays did not: the environment's light and
@@ -327,42 +426,24 @@ void main() {
 
 #if PN_AREA
   // Area-light samples, sorted by light: a light's unshadowed shading is the same for all of
-  // its samples, so it is computed once and only the shadow-map visibility differs.
-  float irradiance = 0.0;
-  vec3 specular = vec3(0.0);
-  float coatIrradiance = 0.0;
-  vec3 coatSpecular = vec3(0.0);
-  float sheenLight = 0.0;  // the sheen lobe's D V n.l toward the light's centre
+  // its samples, so it is computed once (or read from the per-view cache) and only the
+  // shadow-map visibility differs.
+  vec3 shaded = vec3(0.0);
   for (int i = 0; i < MAX_AREA; ++i) {
     if (i >= uAreaCount) break;
+#if PN_LIGHT_CACHE
+    // The mean over the positions that saw a surface: at a silhouette against the sky the
+    // others added nothing, and this sample is on the surface.
+    vec4 cached = texelFetch(uLightCache, ivec3(ivec2(gl_FragCoord.xy), uAreaLayer[i]), 0);
+    shaded = cached.rgb / max(cached.a, 1e-3);
+#else
     if (i == 0 || uAreaLight[i] != uAreaLight[i - 1]) {
-      AreaLight L;
-      L.position = uAreaPos[i];
-      L.direction = uAreaDir[i];
-      L.right = uAreaRight[i];
-      L.up = uAreaUp[i];
-      L.size = uAreaShape[i].xy;
-      L.disk = uAreaShape[i].z > 0.5;
-      evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
-      // Sheen: its lobe is broad, so the light's irradiance times the lobe's value D V toward
-      // the light's centre (irradiance already holds the cosine).
-      sheenLight = 0.0;
-      if (sheenMax > 0.0 && irradiance > 0.0) {
-        vec3 lc = normalize(L.position - vWorldPos);
-        float NoLc = dot(n, lc);
-        sheenLight = NoLc > 0.0 ? sheenBrdfCos(n, v, lc, sheenA) / NoLc : 0.0;
-      }
-      if (coat > 0.0) {
-        evaluateAreaLight(L, vWorldPos, coatN, v, vec3(0.04), 1.0, coatAlpha, coatIrradiance,
-                          coatSpecular);
-      }
+      shaded = areaShading(areaLightOf(i), n, v, f0, f90, alpha, diffuseColor, baseScale,
+                           sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha);
     }
-    if (irradiance <= 0.0 && coatIrradiance <= 0.0) continue;
+#endif
     float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
-    color += uAreaRadiance[i] * visibility *
-             (baseScale * (sheenScale * (diffuseColor * irradiance * INV_PI + specular) +
-                           sheenColor * (sheenLight * irradiance)) +
-              coat * coatSpecular);
+    color += uAreaRadiance[i] * visibility * shaded;
   }
 #endif
 #if PN_PUNCTUAL

@@ -10,6 +10,7 @@
 #define PN_SHEEN -1
 #define PN_UNLIT -1
 #define PN_ALPHA_MODE -1
+#define PN_BROAD_LOBE 0
 #endif
 uniform vec4 uBaseColorFactor;
 uniform float uMetallicFactor;

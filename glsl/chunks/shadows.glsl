@@ -13,8 +13,9 @@ float sampleShadowMap(int index, vec3 coord) {
 
 // Point lights: cube maps rendered once per scene (passes/point_shadow_pass.h), compared
 // against the depth the face's 90-degree projection gives the receiver. Only the variants with
-// punctual lights have them: the branch alone costs llvmpipe about 5 % of an area-light frame.
-#if PN_PUNCTUAL
+// point-light cube maps have them: the branch alone costs llvmpipe about 5 % of an area-light
+// frame (and the second map's unit holds the area lights' cache otherwise).
+#if PN_PUNCTUAL && PN_POINT_SHADOWS
 uniform highp samplerCubeShadow uPointShadow0;
 uniform highp samplerCubeShadow uPointShadow1;
 uniform vec4 uPointShadowPos[PN_MAX_POINT_SHADOWS];     // xyz light position

@@ -50,6 +50,7 @@ struct Row {
 
 // Settings given with --set KEY=VALUE, applied to every run (A/B of one setting).
 std::vector<std::pair<std::string, std::string>> gExtraSettings;
+bool gLightCache = true;  // --no-light-cache turns it off
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
                 bool probeCache, bool probeVolume = true) {
@@ -63,7 +64,8 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   auto job = RenderJob::load(request);
   if (!job) return job.error();
   const Scene* scene = &job->scene;
-  auto r = Renderer::create({.profilePasses = breakdown, .probeCache = probeCache});
+  auto r = Renderer::create(
+      {.profilePasses = breakdown, .probeCache = probeCache, .lightCache = gLightCache});
   if (!r) return r.error();
   PN_TRY(job->applyTo(**r));
   // Warm-up: one full run compiles every program and touches every target.
@@ -183,9 +185,13 @@ int main(int argc, char** argv) {
   app.add_option("--gi-cost", giRounds,
                  "instead of the table: what the probe volume adds per frame, from this many "
                  "interleaved runs with and without it (medians)");
+  bool noLightCache = false;
+  app.add_flag("--no-light-cache", noLightCache,
+               "evaluate the area lights every frame (A/B against their per-view cache)");
   std::vector<std::string> extra;
   app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
+  gLightCache = !noLightCache;
   for (const auto& kv : extra) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) {

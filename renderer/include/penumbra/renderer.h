@@ -31,6 +31,10 @@ struct RendererOptions {
   // Caches the probe volume's per-pixel lookups for a still view, remade every few frames once
   // the volume has filled (off: every frame looks the probes up; for A/B runs and tests).
   bool probeCache = true;
+  // Caches the area lights' unshadowed shading for a still view (the mean over its first
+  // jittered frames); later frames only test each light sample's shadow map (off: every frame
+  // evaluates the lights; for A/B runs and tests).
+  bool lightCache = true;
 };
 
 // Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob
@@ -68,6 +72,8 @@ struct FrameStats {
   int probeCaptures = 0;           // probes of the probe volume captured in this frame
   double probeMs = 0;              // their time (with profilePasses)
   bool probeCacheWritten = false;  // the per-view cache of the volume's lookups was remade
+  bool lightCacheWritten = false;  // the area lights' per-view cache took this frame's shading
+  bool lightCacheRead = false;     // this frame's area-light samples read that cache
 };
 
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).

@@ -52,11 +52,11 @@ Result<PackedEnvironment> resolveEnvironment(const EnvironmentSpec& spec, const 
 }
 
 int64_t estimateTargetBytes(const RenderSettings& s) {
-  // About 5 RGBA32F colour targets and 2 32-bit depth buffers per pixel, plus up to 4 shadow
-  // maps of 32-bit depth.
+  // About 5 RGBA32F colour targets and 2 32-bit depth buffers per pixel, the per-view caches
+  // (probe lookups, up to 4 area lights: 6 RGBA16F), plus up to 4 shadow maps of 32-bit depth.
   const int64_t pixels = int64_t{s.width} * s.height;
   const int64_t shadow = int64_t{s.progressive.shadowMapSize} * s.progressive.shadowMapSize;
-  return pixels * (5 * 16 + 2 * 4) + 4 * shadow * 4;
+  return pixels * (5 * 16 + 6 * 8 + 2 * 4) + 4 * shadow * 4;
 }
 
 Status checkTargetBudget(const RenderSettings& s, int64_t budgetBytes) {

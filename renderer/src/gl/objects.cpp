@@ -217,6 +217,13 @@ void Framebuffer::attachDepth(const Texture2D& texture) {
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, texture.id(), 0);
 }
 
+void Framebuffer::attachColor(int index, const Texture2DArray& array, int layer) {
+  PN_CHECK(layer >= 0 && layer < array.layers(), "texture array layer out of range");
+  bind();
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(index),
+                            array.id(), 0, layer);
+}
+
 void Framebuffer::attachDepth(const Texture2DArray& array, int layer) {
   PN_CHECK(layer >= 0 && layer < array.layers(), "texture array layer out of range");
   bind();

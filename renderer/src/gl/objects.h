@@ -85,6 +85,8 @@ class Framebuffer {
 
   void attachColor(int index, const Texture2D& texture, int level = 0);
   void attachColor(int index, const TextureCube& cube, int face, int level);
+  // One layer of a colour texture array.
+  void attachColor(int index, const Texture2DArray& array, int layer);
   void attachDepth(const Texture2D& texture);
   // One layer of a depth texture array.
   void attachDepth(const Texture2DArray& array, int layer);

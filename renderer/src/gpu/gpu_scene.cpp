@@ -189,6 +189,15 @@ uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialS
   if (glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f) f |= 1u << 7;
   if (m.unlit) f |= 1u << 8;
   f |= static_cast<uint32_t>(m.alphaMode) << 9;
+  // A broad specular lobe on a dielectric (its share of the light is a few per cent): the
+  // occlusion march of its diffuse lobe stands for both.
+  if (!hasTexture[1] && m.metallicFactor < 0.5f && m.roughnessFactor >= 0.75f) f |= 1u << 11;
+  // Lobes broad enough for the area lights' per-view cache (a light's reflection in a smooth
+  // surface is under a pixel: a cache of a few sub-pixel positions would lose it).
+  if (!hasTexture[1] && m.roughnessFactor >= kLightCacheMinRoughness &&
+      (m.clearcoat <= 0.0f || m.clearcoatRoughness >= kLightCacheMinRoughness)) {
+    f |= kFeatureLightCacheable;
+  }
   return f;
 }
 
@@ -198,7 +207,8 @@ gl::Defines materialDefines(uint32_t features) {
           {"PN_CLEARCOAT", (features >> 6) & 1u ? "1" : "0"},
           {"PN_SHEEN", (features >> 7) & 1u ? "1" : "0"},
           {"PN_UNLIT", (features >> 8) & 1u ? "1" : "0"},
-          {"PN_ALPHA_MODE", std::to_string((features >> 9) & 3u)}};
+          {"PN_ALPHA_MODE", std::to_string((features >> 9) & 3u)},
+          {"PN_BROAD_LOBE", (features >> 11) & 1u ? "1" : "0"}};
 }
 
 Result<const gl::Texture2D*> GpuScene::texture(const Scene& scene, const TextureRef& ref,

@@ -40,7 +40,11 @@ struct GpuMaterial {
 };
 
 // A material's features as bits: its texture slots (bits 0-5), clearcoat (6), sheen (7),
-// unlit (8) and alpha mode (bits 9-10).
+// unlit (8), alpha mode (bits 9-10), a broad specular lobe on a dielectric (11: roughness
+// 0.75 or more, metallic under 0.5, no metallic-roughness texture), and lobes rough enough for
+// the area lights' per-view cache (kFeatureLightCacheable).
+inline constexpr uint32_t kFeatureLightCacheable = 1u << 12;
+inline constexpr float kLightCacheMinRoughness = 0.3f;
 uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialSlots]);
 // The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:
 // a software rasterizer runs both sides of a branch even on a uniform, so a material's absent

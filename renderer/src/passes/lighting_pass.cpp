@@ -63,6 +63,20 @@ uint32_t LightingPass::punctualKinds(const LightingBatch& b) {
   return kinds;
 }
 
+bool LightingPass::readsLightCache(const LightingBatch& b) {
+  if (!b.readLightCache || b.area.empty() || !b.targets->lightCache) return false;
+  for (const PunctualDraw& d : b.punctual) {
+    if (d.pointShadow >= 0) return false;
+  }
+  for (const AreaSampleDraw& a : b.area) {
+    if (std::find(b.cachedLightIndices.begin(), b.cachedLightIndices.end(), a.lightIndex) ==
+        b.cachedLightIndices.end()) {
+      return false;
+    }
+  }
+  return true;
+}
+
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
   const bool probes = b.probes && b.probes->active();
   const bool cache = b.readProbeCache && b.probes && b.targets->probeCache.color;
@@ -71,25 +85,31 @@ uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool are
                               [](const PunctualDraw& d) { return d.pointShadow >= 0; });
   return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
          (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u) | (cubeMaps ? kPointShadows : 0u) |
-         (punctual ? punctualKinds(b) << kKindsShift : 0u);
+         (punctual ? punctualKinds(b) << kKindsShift : 0u) |
+         (area && readsLightCache(b) ? kLightCacheRead : 0u);
 }
 
 Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
+  // Smooth materials evaluate their lights every frame (gpu_scene.h kFeatureLightCacheable).
+  if (!(features & kFeatureLightCacheable)) pass &= ~static_cast<uint32_t>(kLightCacheRead);
   const uint64_t key = (static_cast<uint64_t>(pass) << 32) | features;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
   const auto flag = [pass](uint32_t bit) { return std::string((pass & bit) ? "1" : "0"); };
-  gl::Defines defines = {{"PN_OCCLUSION", flag(kOcclusion)},
-                         {"PN_AREA", flag(kArea)},
-                         {"PN_PUNCTUAL", flag(kPunctual)},
-                         {"PN_CAPTURE", flag(kCapture)},
-                         {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
-                         {"PN_PROBES", flag(kProbes)},
-                         {"PN_PROBE_CACHE", flag(kProbeCache)},
-                         {"PN_POINT_SHADOWS", flag(kPointShadows)},
-                         {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & 31u)},
-                         {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
-                                             : (pass & kTransmitOwn)   ? "1"
-                                                                       : "0"}};
+  gl::Defines defines = {
+      {"PN_OCCLUSION", flag(kOcclusion)},
+      {"PN_AREA", flag(kArea)},
+      {"PN_PUNCTUAL", flag(kPunctual)},
+      {"PN_CAPTURE", flag(kCapture)},
+      {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
+      {"PN_PROBES", flag(kProbes)},
+      {"PN_PROBE_CACHE", flag(kProbeCache)},
+      {"PN_POINT_SHADOWS", flag(kPointShadows)},
+      {"PN_LIGHT_CACHE_WRITE", std::to_string((pass >> kCachedLightsShift) & 7u)},
+      {"PN_LIGHT_CACHE", flag(kLightCacheRead)},
+      {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & 31u)},
+      {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
+                          : (pass & kTransmitOwn)   ? "1"
+                                                    : "0"}};
   for (auto& d : materialDefines(features)) defines.push_back(std::move(d));
   auto p = library_->program("mesh.vert", "lighting.frag", defines);
   if (!p) return p.error();
@@ -103,8 +123,11 @@ Status LightingPass::drawByMaterial(uint32_t pass, const GpuScene& scene,
                                     int instances) {
   std::vector<const gl::Program*> ready;  // set up in this call
   const gl::Program* current = nullptr;
+  const bool cacheWrite = ((pass >> kCachedLightsShift) & 7u) != 0;
   for (const DrawItem& item : items) {
-    auto p = program(pass, scene.material(item.material).features);
+    const uint32_t features = scene.material(item.material).features;
+    if (cacheWrite && !(features & kFeatureLightCacheable)) continue;  // they never read it
+    auto p = program(pass, features);
     if (!p) return p.error();
     if (*p != current) {
       current = *p;
@@ -197,6 +220,18 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uAreaUp", std::span<const glm::vec3>(up));
   p.set("uAreaShape", std::span<const glm::vec4>(shape));
   p.set("uAreaRadiance", std::span<const glm::vec3>(radiance));
+  if (readsLightCache(b)) {
+    // After the point shadows' binds: the cache takes the second one's unit.
+    std::vector<int> layers;
+    for (const AreaSampleDraw& a : b.area) {
+      const auto it =
+          std::find(b.cachedLightIndices.begin(), b.cachedLightIndices.end(), a.lightIndex);
+      layers.push_back(static_cast<int>(it - b.cachedLightIndices.begin()));
+    }
+    b.targets->lightCache.bind(kUnitLightCache);
+    p.set("uLightCache", kUnitLightCache);
+    p.set("uAreaLayer", std::span<const int>(layers));
+  }
   p.set("uShadowMatrix", std::span<const glm::mat4>(shadowMatrices));
   p.set("uShadowParams", std::span<const glm::vec4>(shadowParams));
 
@@ -346,6 +381,37 @@ Status LightingPass::draw(const LightingBatch& b) {
     }
     b.targets->frame.framebuffer.bind();
   }
+  if (b.writeLightCache && !b.cachedLights.empty()) {
+    // The lights' unshadowed shading where this frame's depth pass left the surfaces, a
+    // layer a light, added with the batch's weight (the mean over the view's first frames).
+    const int layers = static_cast<int>(b.cachedLights.size());
+    PN_TRY(b.targets->ensureLightCache(layers));
+    b.targets->lightCacheFramebuffer.bind();
+    if (b.clearLightCache) {
+      gl::apply({.depthWrite = false});
+      for (int i = 0; i < layers; ++i) gl::clearBufferFloat(i, 0, 0, 0, 0);
+    }
+    LightingBatch writing = b;
+    writing.readLightCache = false;
+    writing.area.clear();
+    writing.punctual.clear();
+    for (size_t i = 0; i < b.cachedLights.size(); ++i) {
+      writing.area.push_back(
+          {.light = b.cachedLights[i], .lightIndex = b.cachedLightIndices[i], .weight = 1.0f});
+    }
+    gl::PipelineState cacheState;
+    cacheState.depthTest = gl::DepthTest::LessEqual;
+    cacheState.depthWrite = false;
+    cacheState.blend = gl::Blend::Additive;
+    const auto setupCache = [&](const gl::Program& p) {
+      setUniforms(p, writing, envRotation);
+      p.set("uLightCacheWeight", b.lightCacheWeight);
+    };
+    const uint32_t cachePass = (static_cast<uint32_t>(layers) << kCachedLightsShift) |
+                               passBits(writing, false, true, false);
+    PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
+    b.targets->frame.framebuffer.bind();
+  }
   const uint32_t pass = passBits(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
   const auto setup = [&](const gl::Program& p) { setUniforms(p, b, envRotation); };
   gl::PipelineState opaque;
@@ -384,7 +450,8 @@ Status LightingPass::draw(const LightingBatch& b) {
       gl::clearBufferFloat(0, 0, 0, 0, 0);
     }
     LightingBatch glass = b;
-    glass.readProbeCache = false;  // the cache holds what lies behind
+    glass.readProbeCache = false;  // the caches hold what lies behind
+    glass.readLightCache = false;
     gl::PipelineState own;
     own.depthTest = gl::DepthTest::LessEqual;
     own.depthWrite = false;

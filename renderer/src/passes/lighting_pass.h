@@ -74,6 +74,16 @@ struct LightingBatch {
   // occlusion only): remake it before shading, and read it.
   bool writeProbeCache = false;
   bool readProbeCache = false;
+  // The area lights' per-view cache (targets->lightCache; first batch only): the lights it
+  // holds (layer i: cachedLights[i]), whether this frame adds its unshadowed shading to it
+  // (times lightCacheWeight; clearing it first with clearLightCache), and whether the batch's
+  // samples read it instead of evaluating their lights.
+  std::vector<const Light*> cachedLights;
+  std::vector<int> cachedLightIndices;  // the scene light index of each layer
+  bool writeLightCache = false;
+  bool clearLightCache = false;
+  float lightCacheWeight = 0.0f;
+  bool readLightCache = false;
 };
 
 // One face of a probe capture: its camera and its square in the bound capture target.
@@ -108,13 +118,18 @@ class LightingPass {
     kPunctual = 4,
     kCapture = 8,
     kCacheWrite = 16,
-    kTransmitOwn = 32,      // PN_TRANSMISSION 1
-    kTransmitCompose = 64,  // PN_TRANSMISSION 2
-    kProbes = 128,          // PN_PROBES: the probe volume is on
-    kProbeCache = 256,      // PN_PROBE_CACHE: its per-view cache is read
-    kPointShadows = 512,    // PN_POINT_SHADOWS: a punctual sample has a point light's cube map
-    kKindsShift = 10,       // PN_PUNCTUAL_KINDS (punctualKinds) from this bit on
+    kTransmitOwn = 32,           // PN_TRANSMISSION 1
+    kTransmitCompose = 64,       // PN_TRANSMISSION 2
+    kProbes = 128,               // PN_PROBES: the probe volume is on
+    kProbeCache = 256,           // PN_PROBE_CACHE: its per-view cache is read
+    kPointShadows = 512,         // PN_POINT_SHADOWS: a punctual sample has a point light's cube map
+    kKindsShift = 10,            // PN_PUNCTUAL_KINDS (punctualKinds) from this bit on
+    kLightCacheRead = 1u << 16,  // PN_LIGHT_CACHE: area-light samples read the lights' cache
+    kCachedLightsShift = 17,     // PN_LIGHT_CACHE_WRITE: lights written to it (0: none)
   };
+  // Whether batch b reads the area lights' cache: every sample's light is in it, and no point
+  // light's cube map takes its unit.
+  static bool readsLightCache(const LightingBatch& b);
   // The kinds of punctual samples in a batch: 1 point, 2 spot, 4 directional with a disk,
   // 8 directional without, 16 sky-shadow samples. Only their code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);

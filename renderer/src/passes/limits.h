@@ -15,6 +15,9 @@ namespace penumbra::passes {
 // Shadow maps live at once: the area-light samples one lighting pass shades.
 inline constexpr int kMaxShadowMaps = 4;
 inline constexpr int kMaxPunctualLights = penumbra::kMaxPunctualLights;
+// Area lights the per-view light cache holds (a layer each, written at once: GLES 3.0
+// guarantees four draw buffers).
+inline constexpr int kMaxCachedLights = 4;
 // Point lights with a cube shadow map (the first ones of the scene; the rest stay unshadowed).
 inline constexpr int kMaxPointShadows = 2;
 
@@ -29,6 +32,9 @@ inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitProbeCache
 // units: the compose pass never reads the cache). Unit 12 is the clearcoat's normal map
 // (gpu/gpu_scene.h).
 inline constexpr int kUnitBehind = kUnitProbeCacheRoom, kUnitGlassLight = kUnitProbeCache;
+// The area lights' per-view cache: in the second point shadow's unit (a batch with point-light
+// cube maps evaluates its lights instead).
+inline constexpr int kUnitLightCache = kUnitPointShadow + 1;
 static_assert(kClearcoatNormalUnit == kUnitPointShadow + kMaxPointShadows &&
                   kClearcoatNormalUnit < kUnitProbeAtlas,
               "the clearcoat normal map's unit is taken");

@@ -71,6 +71,25 @@ Status RenderTargets::ensureProbeCache() {
   return {};
 }
 
+Status RenderTargets::ensureLightCache(int layers) {
+  if (lightCache && lightCache.layers() == layers) return {};
+  auto cache = gl::Texture2DArray::create(
+      {.width = width,
+       .height = height,
+       .format = prepassFormat,
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}},
+      layers);
+  if (!cache) return makeError("light cache target: " + cache.message());
+  gl::Framebuffer fb = gl::Framebuffer::create();
+  for (int i = 0; i < layers; ++i) fb.attachColor(i, *cache, i);
+  fb.attachDepth(frameDepth);
+  fb.setDrawBuffers(layers);
+  PN_TRY(fb.checkComplete());
+  lightCache = std::move(*cache);
+  lightCacheFramebuffer = std::move(fb);
+  return {};
+}
+
 Status RenderTargets::ensureTransmission() {
   if (glassLight.color) return {};
   auto light = makeColor(width, height, format, &frameDepth);

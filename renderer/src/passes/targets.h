@@ -34,6 +34,8 @@ struct RenderTargets {
   // shades are written. Made on first use.
   ColorTarget probeCache;
   gl::Texture2D probeCacheRoom;
+  gl::Texture2DArray lightCache;
+  gl::Framebuffer lightCacheFramebuffer;
 
   // Transmissive surfaces (LightingPass): their own light, with the frame's depth, and the
   // copy of the frame they look through. Accumulation format; made on first use.
@@ -46,6 +48,9 @@ struct RenderTargets {
   // it with the other accumulation target (no accumulation pass), which becomes the frame
   // target. Every one of the three has the frame's depth attached, so any can be drawn into.
   Status ensureProbeCache();
+  // The per-view cache of `layers` area lights' unshadowed shading (lighting_pass.h): a layer
+  // a light, all drawn at once over the frame's depth. Remade when the count changes.
+  Status ensureLightCache(int layers);
   Status ensureTransmission();
 
   void takeFrameAsMean() {

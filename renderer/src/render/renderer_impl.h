@@ -29,6 +29,7 @@
 #include "passes/targets.h"
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
+#include "progressive/light_cache.h"
 #include "render/light_samples.h"
 
 namespace penumbra {
@@ -69,6 +70,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   bool prepassValid = false;
   int probeCacheFrame = -1;  // the frame that last wrote the probe cache (-1: none this view)
   double probeCacheCaptures = 0.0;  // the volume's mean captures a probe at that frame
+  int lightCacheWritten = 0;        // frames of this view in the area lights' cache
   FrameStats stats;
   float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
   std::chrono::steady_clock::time_point passStart;
@@ -268,6 +270,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (plan.frame == 1) {
       prepassValid = false;
       probeCacheFrame = -1;
+      lightCacheWritten = 0;
     }
     auto& units = pending.units;
     const int k = pending.tiles;
@@ -308,6 +311,29 @@ struct Renderer::Impl : progressive::FrameRenderer {
       probeCacheCaptures = captured;
     }
     stats.probeCacheWritten = writeProbeCache;
+    // The area lights' per-view cache (progressive/light_cache.h): every area light of the scene
+    // (up to kMaxCachedLights), opaque scenes only (BLEND surfaces cover differently each frame).
+    std::vector<const Light*> cachedLights;
+    std::vector<int> cachedLightIndices;
+    if (options.lightCache && scene && scene->blended().empty()) {
+      for (size_t i = 0; i < lights.size(); ++i) {
+        if (!lights[i].isArea()) continue;
+        cachedLights.push_back(&lights[i]);
+        cachedLightIndices.push_back(static_cast<int>(i));
+      }
+      if (cachedLights.size() > static_cast<size_t>(passes::kMaxCachedLights)) {
+        cachedLights.clear();
+        cachedLightIndices.clear();
+      }
+    }
+    const int m = settings.progressive.frames;
+    const bool writeLightCache =
+        !cachedLights.empty() && progressive::writesLightCache(plan.frame, lightCacheWritten, m);
+    const bool readLightCache =
+        !cachedLights.empty() && progressive::lightCacheReady(lightCacheWritten, m);
+    const bool clearLightCache = writeLightCache && lightCacheWritten == 0;
+    if (writeLightCache) ++lightCacheWritten;
+    stats.lightCacheWritten = writeLightCache;
     // Split this frame's light samples: area samples go in batches of up to kMaxShadowMaps.
     std::vector<const LightSample*> area;
     std::vector<passes::PunctualDraw> punctual;
@@ -368,7 +394,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .coverageFrame = cameraCoverageFrame(plan),
           .probes = probesOn() ? &*probes : nullptr,
           .writeProbeCache = b == 0 && writeProbeCache,
-          .readProbeCache = b == 0 && probeCache});
+          .readProbeCache = b == 0 && probeCache,
+          .cachedLights = cachedLights,
+          .cachedLightIndices = cachedLightIndices,
+          .writeLightCache = b == 0 && writeLightCache,
+          .clearLightCache = clearLightCache,
+          .lightCacheWeight = 1.0f / static_cast<float>(progressive::lightCacheFrames(m)),
+          .readLightCache = readLightCache});
       passes::LightingBatch& batch = pending.batches.back();
       const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
       const size_t to = b == 0 ? firstBatch : from + kBatch;
@@ -398,6 +430,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
         }
         batch.area.push_back(draw);
       }
+      if (readLightCache && !batch.area.empty()) stats.lightCacheRead = true;
       if (b == 0) {
         // Their maps follow the batch's area samples.
         const int firstSlot = static_cast<int>(batch.area.size());
