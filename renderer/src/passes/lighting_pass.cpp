@@ -78,9 +78,7 @@ bool LightingPass::readsLightCache(const LightingBatch& b) {
 }
 
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
-  // An empty volume (the first frames after loading) answers nothing: no lookups. (Captures
-  // still read it: they build on what it holds, nothing else; drawCapture sets kProbes.)
-  const bool probes = b.probes && b.probes->active() && b.probes->captures() > 0;
+  const bool probes = b.probes && b.probes->active();
   const bool cache = b.readProbeCache && b.probes && b.targets->probeCache.color;
   const bool cubeMaps =
       punctual && std::any_of(b.punctual.begin(), b.punctual.end(),
@@ -298,8 +296,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
                                  float skyDistance) {
   if (!b.scene || views.empty()) return {};
   const glm::mat3 envRotation = environmentLookup(*b.settings);
-  const uint32_t pass = kCapture | passBits(b, false, !b.area.empty(), !b.punctual.empty()) |
-                        (b.probes && b.probes->active() ? kProbes : 0u);
+  const uint32_t pass = kCapture | passBits(b, false, !b.area.empty(), !b.punctual.empty());
   gl::PipelineState state;
   if (!b.first) {
     state.depthTest = gl::DepthTest::LessEqual;
