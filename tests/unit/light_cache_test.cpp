@@ -11,9 +11,10 @@ namespace {
 TEST(LightCacheScheduleTest, AQuarterOfTheFramesFromFrameTwoThenRead) {
   EXPECT_EQ(progressive::lightCacheFrames(128), 32);
   EXPECT_EQ(progressive::lightCacheFrames(64), 16);
+  EXPECT_EQ(progressive::lightCacheFrames(32), 8);
   EXPECT_EQ(progressive::lightCacheFrames(8), 4);      // at least 4 positions
   EXPECT_EQ(progressive::lightCacheFrames(4096), 32);  // at most 32
-  for (const int m : {1, 8, 48, 128, 1024}) {
+  for (const int m : {1, 8, 31, 32, 48, 128, 1024}) {
     int written = 0, firstRead = 0;
     for (int frame = 1; frame <= m; ++frame) {
       if (progressive::lightCacheReady(written, m) && firstRead == 0) firstRead = frame;
@@ -24,6 +25,11 @@ TEST(LightCacheScheduleTest, AQuarterOfTheFramesFromFrameTwoThenRead) {
       }
     }
     const int k = progressive::lightCacheFrames(m);
+    if (m < progressive::kLightCacheMinFrames) {
+      EXPECT_EQ(written, 0) << "a short view does without it: m " << m;
+      EXPECT_EQ(firstRead, 0);
+      continue;
+    }
     EXPECT_EQ(written, std::min(k, m - 1)) << "m " << m;
     // Read from the frame after its last write, if the view has one.
     if (m > k + 1) {

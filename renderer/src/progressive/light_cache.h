@@ -16,13 +16,17 @@ inline int lightCacheFrames(int m) {
   return std::clamp(m / 4, 4, 32);
 }
 
+// Views shorter than this do without the cache: its build frames would be a large share of
+// them, and in a browser each of its two programs' first use is a compile mid-convergence.
+inline constexpr int kLightCacheMinFrames = 32;
+
 // Whether frame `frame` of a view of m frames adds to the cache, given how many already have.
 inline bool writesLightCache(int frame, int written, int m) {
-  return frame >= 2 && written < lightCacheFrames(m);
+  return m >= kLightCacheMinFrames && frame >= 2 && written < lightCacheFrames(m);
 }
 // Whether the cache is complete (its frames are all in).
 inline bool lightCacheReady(int written, int m) {
-  return written >= lightCacheFrames(m);
+  return m >= kLightCacheMinFrames && written >= lightCacheFrames(m);
 }
 
 }  // namespace penumbra::progressive
