@@ -16,17 +16,6 @@ namespace {
 
 class LightCacheGLTest : public GlFixture {};
 
-// A box seen from inside: boxMesh with its normals and windings turned inward.
-Mesh insideBox(glm::vec3 lo, glm::vec3 hi, int material) {
-  Mesh m = boxMesh(lo, hi, material);
-  for (Primitive& p : m.primitives) {
-    for (glm::vec3& n : p.normals) n = -n;
-    for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
-      std::swap(p.indices[i + 1], p.indices[i + 2]);
-  }
-  return m;
-}
-
 // A room lit by a rect light and a disk light, with a bright glossy box in front of its own
 // shadow on the back wall (the high-contrast silhouette) and a metal sphere (small highlights).
 Scene edgeScene() {

@@ -14,17 +14,6 @@ namespace {
 
 class ProbeVolumeGLTest : public GlFixture {};
 
-// A box seen from inside: boxMesh with its normals and windings turned inward.
-Mesh insideBox(glm::vec3 lo, glm::vec3 hi, int material) {
-  Mesh m = boxMesh(lo, hi, material);
-  for (Primitive& p : m.primitives) {
-    for (glm::vec3& n : p.normals) n = -n;
-    for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
-      std::swap(p.indices[i + 1], p.indices[i + 2]);
-  }
-  return m;
-}
-
 Light ceilingLight(glm::vec3 centre, float size, float nits) {
   Light l;
   l.type = LightType::Rect;

@@ -49,6 +49,16 @@ Mesh boxMesh(glm::vec3 lo, glm::vec3 hi, int material) {
   return m;
 }
 
+Mesh insideBox(glm::vec3 lo, glm::vec3 hi, int material) {
+  Mesh m = boxMesh(lo, hi, material);
+  for (Primitive& p : m.primitives) {
+    for (glm::vec3& n : p.normals) n = -n;
+    for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
+      std::swap(p.indices[i + 1], p.indices[i + 2]);
+  }
+  return m;
+}
+
 Material lambert(glm::vec3 albedo) {
   Material m;
   m.baseColorFactor = glm::vec4(albedo, 1.0f);

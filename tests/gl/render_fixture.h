@@ -13,6 +13,8 @@ namespace penumbra::test {
 Mesh quadMesh(float size, float y, int material);
 // A box [min, max] with outward normals (5 faces, no bottom when `open` is set).
 Mesh boxMesh(glm::vec3 min, glm::vec3 max, int material);
+// A box seen from inside: boxMesh with its normals and windings turned inward.
+Mesh insideBox(glm::vec3 lo, glm::vec3 hi, int material);
 // A Lambertian material of the given albedo (metallic 0, roughness 1).
 Material lambert(glm::vec3 albedo);
 // A camera at `eye` looking at `target` with vertical field of view `yfovDeg`.
