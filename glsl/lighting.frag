@@ -91,7 +91,7 @@ out vec4 fragColor;
 // key (linear view depth over the volume's diagonal) finds the right texel where the frame's
 // jittered sample lands on another surface than the cached one (silhouettes): of the pixel and
 // its four neighbours, the best match. No lookup falls back to the probes: a software
-// rasterizer would run that code for every pixel (it skips only branches on uniforms).
+// rasterizer runs both sides of a branch, so the fallback would cost every pixel.
 uniform sampler2D uProbeCache;
 uniform sampler2D uProbeCacheRoom;
 
@@ -291,27 +291,20 @@ void main() {
   float sheenScale = 1.0 - sheenMax * sheenE;
 #if PN_LIGHT_CACHE_WRITE
   // One layer a light (PN_LIGHT_CACHE_WRITE of them; outputs take constant indices).
-  lightCache0 = vec4(areaShading(areaLightOf(0), n, v, f0, f90, alpha, diffuseColor, baseScale,
-                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
-                         uLightCacheWeight,
-                     uLightCacheWeight);
+#define PN_CACHED_SHADING(i)                                                                 \
+  vec4(areaShading(areaLightOf(i), n, v, f0, f90, alpha, diffuseColor, baseScale, sheenScale, \
+                   sheenColor, sheenA, coat, coatN, coatAlpha) *                            \
+           uLightCacheWeight,                                                               \
+       uLightCacheWeight)
+  lightCache0 = PN_CACHED_SHADING(0);
 #if PN_LIGHT_CACHE_WRITE > 1
-  lightCache1 = vec4(areaShading(areaLightOf(1), n, v, f0, f90, alpha, diffuseColor, baseScale,
-                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
-                         uLightCacheWeight,
-                     uLightCacheWeight);
+  lightCache1 = PN_CACHED_SHADING(1);
 #endif
 #if PN_LIGHT_CACHE_WRITE > 2
-  lightCache2 = vec4(areaShading(areaLightOf(2), n, v, f0, f90, alpha, diffuseColor, baseScale,
-                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
-                         uLightCacheWeight,
-                     uLightCacheWeight);
+  lightCache2 = PN_CACHED_SHADING(2);
 #endif
 #if PN_LIGHT_CACHE_WRITE > 3
-  lightCache3 = vec4(areaShading(areaLightOf(3), n, v, f0, f90, alpha, diffuseColor, baseScale,
-                                 sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha) *
-                         uLightCacheWeight,
-                     uLightCacheWeight);
+  lightCache3 = PN_CACHED_SHADING(3);
 #endif
   return;
 #endif

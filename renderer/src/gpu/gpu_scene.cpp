@@ -185,13 +185,17 @@ uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialS
   for (int slot = 0; slot < kMaterialSlots; ++slot) {
     if (hasTexture[slot]) f |= 1u << slot;
   }
-  if (m.clearcoat > 0.0f) f |= 1u << 6;
-  if (glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f) f |= 1u << 7;
-  if (m.unlit) f |= 1u << 8;
-  f |= static_cast<uint32_t>(m.alphaMode) << 9;
+  if (m.clearcoat > 0.0f) f |= kFeatureClearcoat;
+  if (glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f) {
+    f |= kFeatureSheen;
+  }
+  if (m.unlit) f |= kFeatureUnlit;
+  f |= static_cast<uint32_t>(m.alphaMode) << kFeatureAlphaShift;
   // A broad specular lobe on a dielectric (its share of the light is a few per cent): the
   // occlusion march of its diffuse lobe stands for both.
-  if (!hasTexture[1] && m.metallicFactor < 0.5f && m.roughnessFactor >= 0.75f) f |= 1u << 11;
+  if (!hasTexture[1] && m.metallicFactor < 0.5f && m.roughnessFactor >= 0.75f) {
+    f |= kFeatureBroadLobe;
+  }
   // Lobes broad enough for the area lights' per-view cache (a light's reflection in a smooth
   // surface is under a pixel: a cache of a few sub-pixel positions would lose it).
   if (!hasTexture[1] && m.roughnessFactor >= kLightCacheMinRoughness &&
@@ -202,13 +206,14 @@ uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialS
 }
 
 gl::Defines materialDefines(uint32_t features) {
+  const auto flag = [features](uint32_t bit) { return std::string(features & bit ? "1" : "0"); };
   return {{"PN_MATERIAL_KEYED", "1"},
-          {"PN_TEXTURES", std::to_string(features & 63u)},
-          {"PN_CLEARCOAT", (features >> 6) & 1u ? "1" : "0"},
-          {"PN_SHEEN", (features >> 7) & 1u ? "1" : "0"},
-          {"PN_UNLIT", (features >> 8) & 1u ? "1" : "0"},
-          {"PN_ALPHA_MODE", std::to_string((features >> 9) & 3u)},
-          {"PN_BROAD_LOBE", (features >> 11) & 1u ? "1" : "0"}};
+          {"PN_TEXTURES", std::to_string(features & kFeatureTextures)},
+          {"PN_CLEARCOAT", flag(kFeatureClearcoat)},
+          {"PN_SHEEN", flag(kFeatureSheen)},
+          {"PN_UNLIT", flag(kFeatureUnlit)},
+          {"PN_ALPHA_MODE", std::to_string((features >> kFeatureAlphaShift) & 3u)},
+          {"PN_BROAD_LOBE", flag(kFeatureBroadLobe)}};
 }
 
 Result<const gl::Texture2D*> GpuScene::texture(const Scene& scene, const TextureRef& ref,

@@ -39,11 +39,14 @@ struct GpuMaterial {
   uint32_t features = 0;
 };
 
-// A material's features as bits: its texture slots (bits 0-5), clearcoat (6), sheen (7),
-// unlit (8), alpha mode (bits 9-10), a broad specular lobe on a dielectric (11: roughness
+// A material's features as bits: its texture slots (bit i: slot i), the layers it has, its
+// alpha mode (kFeatureAlphaShift, 2 bits), a broad specular lobe on a dielectric (roughness
 // 0.75 or more, metallic under 0.5, no metallic-roughness texture), and lobes rough enough for
-// the area lights' per-view cache (kFeatureLightCacheable).
-inline constexpr uint32_t kFeatureLightCacheable = 1u << 12;
+// the area lights' per-view cache.
+inline constexpr uint32_t kFeatureTextures = (1u << kMaterialSlots) - 1;
+inline constexpr uint32_t kFeatureClearcoat = 1u << 6, kFeatureSheen = 1u << 7,
+                          kFeatureUnlit = 1u << 8, kFeatureAlphaShift = 9,
+                          kFeatureBroadLobe = 1u << 11, kFeatureLightCacheable = 1u << 12;
 inline constexpr float kLightCacheMinRoughness = 0.3f;
 uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialSlots]);
 // The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:

@@ -63,23 +63,29 @@ uint32_t LightingPass::punctualKinds(const LightingBatch& b) {
   return kinds;
 }
 
+int LightingPass::lightCacheLayer(const LightingBatch& b, int lightIndex) {
+  const auto it = std::find_if(b.cachedLights.begin(), b.cachedLights.end(),
+                               [&](const AreaSampleDraw& c) { return c.lightIndex == lightIndex; });
+  return it == b.cachedLights.end() ? -1 : static_cast<int>(it - b.cachedLights.begin());
+}
+
 bool LightingPass::readsLightCache(const LightingBatch& b) {
   if (!b.readLightCache || b.area.empty() || !b.targets->lightCache) return false;
   for (const PunctualDraw& d : b.punctual) {
     if (d.pointShadow >= 0) return false;
   }
-  for (const AreaSampleDraw& a : b.area) {
-    if (std::find(b.cachedLightIndices.begin(), b.cachedLightIndices.end(), a.lightIndex) ==
-        b.cachedLightIndices.end()) {
-      return false;
-    }
-  }
-  return true;
+  return std::all_of(b.area.begin(), b.area.end(), [&](const AreaSampleDraw& a) {
+    return lightCacheLayer(b, a.lightIndex) >= 0;
+  });
+}
+
+bool LightingPass::readsProbeCache(const LightingBatch& b) {
+  return b.readProbeCache && b.probes && b.targets->probeCache.color;
 }
 
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
   const bool probes = b.probes && b.probes->active();
-  const bool cache = b.readProbeCache && b.probes && b.targets->probeCache.color;
+  const bool cache = readsProbeCache(b);
   const bool cubeMaps =
       punctual && std::any_of(b.punctual.begin(), b.punctual.end(),
                               [](const PunctualDraw& d) { return d.pointShadow >= 0; });
@@ -174,12 +180,12 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uCoverageFrame", b.coverageFrame);
   p.set("uCoverageStream", 0);
   if (b.probes) {
-    b.probes->bind(p, true);
+    b.probes->bind(p);
   } else {
     dummy_.bind(kUnitProbeAtlas);
     p.set("uProbeAtlas", kUnitProbeAtlas);
   }
-  const bool readCache = b.readProbeCache && b.probes && b.targets->probeCache.color;
+  const bool readCache = readsProbeCache(b);
   (readCache ? b.targets->probeCache.color : dummy_).bind(kUnitProbeCache);
   (readCache ? b.targets->probeCacheRoom : dummy_).bind(kUnitProbeCacheRoom);
   p.set("uProbeCache", kUnitProbeCache);
@@ -223,11 +229,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   if (readsLightCache(b)) {
     // After the point shadows' binds: the cache takes the second one's unit.
     std::vector<int> layers;
-    for (const AreaSampleDraw& a : b.area) {
-      const auto it =
-          std::find(b.cachedLightIndices.begin(), b.cachedLightIndices.end(), a.lightIndex);
-      layers.push_back(static_cast<int>(it - b.cachedLightIndices.begin()));
-    }
+    for (const AreaSampleDraw& a : b.area) layers.push_back(lightCacheLayer(b, a.lightIndex));
     b.targets->lightCache.bind(kUnitLightCache);
     p.set("uLightCache", kUnitLightCache);
     p.set("uAreaLayer", std::span<const int>(layers));
@@ -393,12 +395,8 @@ Status LightingPass::draw(const LightingBatch& b) {
     }
     LightingBatch writing = b;
     writing.readLightCache = false;
-    writing.area.clear();
+    writing.area = b.cachedLights;
     writing.punctual.clear();
-    for (size_t i = 0; i < b.cachedLights.size(); ++i) {
-      writing.area.push_back(
-          {.light = b.cachedLights[i], .lightIndex = b.cachedLightIndices[i], .weight = 1.0f});
-    }
     gl::PipelineState cacheState;
     cacheState.depthTest = gl::DepthTest::LessEqual;
     cacheState.depthWrite = false;

@@ -75,11 +75,10 @@ struct LightingBatch {
   bool writeProbeCache = false;
   bool readProbeCache = false;
   // The area lights' per-view cache (targets->lightCache; first batch only): the lights it
-  // holds (layer i: cachedLights[i]), whether this frame adds its unshadowed shading to it
-  // (times lightCacheWeight; clearing it first with clearLightCache), and whether the batch's
-  // samples read it instead of evaluating their lights.
-  std::vector<const Light*> cachedLights;
-  std::vector<int> cachedLightIndices;  // the scene light index of each layer
+  // holds (layer i: cachedLights[i], weight 1, unshadowed), whether this frame adds its
+  // unshadowed shading to it (times lightCacheWeight; clearing it first with clearLightCache),
+  // and whether the batch's samples read it instead of evaluating their lights.
+  std::vector<AreaSampleDraw> cachedLights;
   bool writeLightCache = false;
   bool clearLightCache = false;
   float lightCacheWeight = 0.0f;
@@ -108,6 +107,9 @@ class LightingPass {
   // first batch's camera and prepass. No-ops without transmissive surfaces.
   Status copyBehind(const LightingBatch& batch);
   Status composeTransmission(const LightingBatch& batch);
+  // Whether batch b's area-light samples read the area lights' cache: every sample's light is
+  // in it, and no point light's cube map takes its unit.
+  static bool readsLightCache(const LightingBatch& b);
 
  private:
   // lighting.frag variants: a pass's bits and a material's features (gpu/gpu_scene.h) make
@@ -127,9 +129,10 @@ class LightingPass {
     kLightCacheRead = 1u << 16,  // PN_LIGHT_CACHE: area-light samples read the lights' cache
     kCachedLightsShift = 17,     // PN_LIGHT_CACHE_WRITE: lights written to it (0: none)
   };
-  // Whether batch b reads the area lights' cache: every sample's light is in it, and no point
-  // light's cube map takes its unit.
-  static bool readsLightCache(const LightingBatch& b);
+  // The cache layer of scene light `lightIndex` in batch b (-1: not cached).
+  static int lightCacheLayer(const LightingBatch& b, int lightIndex);
+  // Whether batch b reads its probe volume's per-view cache (it has been made).
+  static bool readsProbeCache(const LightingBatch& b);
   // The kinds of punctual samples in a batch: 1 point, 2 spot, 4 directional with a disk,
   // 8 directional without, 16 sky-shadow samples. Only their code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);

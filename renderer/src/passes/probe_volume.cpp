@@ -102,10 +102,9 @@ glm::vec2 ProbeVolume::lightPoint(uint32_t seed) const {
   return u - glm::floor(u);
 }
 
-void ProbeVolume::bind(const gl::Program& p, bool enabled) const {
-  const bool on = enabled && active();
+void ProbeVolume::bind(const gl::Program& p) const {
   p.set("uProbeAtlas", kUnitProbeAtlas);
-  if (!on) return;
+  if (!active()) return;
   atlas_.bind(kUnitProbeAtlas);
   p.set("uProbeOrigin", grid_.origin);
   p.set("uProbeSpacing", grid_.spacing);

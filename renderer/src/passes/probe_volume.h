@@ -81,9 +81,9 @@ class ProbeVolume {
   glm::vec2 lightPoint(uint32_t seed) const;
   // Mean captures per probe so far.
   double meanCaptures() const;
-  // Sets the probe uniforms and binds the atlases on a program in use (none for `enabled`
-  // false or an inactive volume: the program's PN_PROBES define says whether it looks up).
-  void bind(const gl::Program& program, bool enabled) const;
+  // Sets the probe uniforms and binds the atlases on a program in use (none for an inactive
+  // volume: the program's PN_PROBES define says whether it looks up).
+  void bind(const gl::Program& program) const;
   // Captures the next probe of the grid's order and blends it into the atlases; first
   // re-renders one light's map from lightPoint() if `in.newLightMap`.
   Status capture(LightingPass& lighting, const ProbeCaptureInputs& in);

@@ -313,17 +313,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
     stats.probeCacheWritten = writeProbeCache;
     // The area lights' per-view cache (progressive/light_cache.h): every area light of the scene
     // (up to kMaxCachedLights), opaque scenes only (BLEND surfaces cover differently each frame).
-    std::vector<const Light*> cachedLights;
-    std::vector<int> cachedLightIndices;
+    std::vector<passes::AreaSampleDraw> cachedLights;
     if (options.lightCache && scene && scene->blended().empty()) {
       for (size_t i = 0; i < lights.size(); ++i) {
-        if (!lights[i].isArea()) continue;
-        cachedLights.push_back(&lights[i]);
-        cachedLightIndices.push_back(static_cast<int>(i));
+        if (lights[i].isArea()) cachedLights.push_back({&lights[i], static_cast<int>(i)});
       }
       if (cachedLights.size() > static_cast<size_t>(passes::kMaxCachedLights)) {
         cachedLights.clear();
-        cachedLightIndices.clear();
       }
     }
     const int m = settings.progressive.frames;
@@ -396,7 +392,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .writeProbeCache = b == 0 && writeProbeCache,
           .readProbeCache = b == 0 && probeCache,
           .cachedLights = cachedLights,
-          .cachedLightIndices = cachedLightIndices,
           .writeLightCache = b == 0 && writeLightCache,
           .clearLightCache = clearLightCache,
           .lightCacheWeight = 1.0f / static_cast<float>(progressive::lightCacheFrames(m)),
@@ -430,7 +425,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
         }
         batch.area.push_back(draw);
       }
-      if (readLightCache && !batch.area.empty()) stats.lightCacheRead = true;
       if (b == 0) {
         // Their maps follow the batch's area samples.
         const int firstSlot = static_cast<int>(batch.area.size());
@@ -461,6 +455,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
         }
         batch.punctual = punctual;
       }
+      if (passes::LightingPass::readsLightCache(batch)) stats.lightCacheRead = true;
       // Without transmissive surfaces the last batch's band also accumulates; with them the
       // accumulation waits for their compose (below).
       const bool accumulateHere = b + 1 == batches && !transmissive;
