@@ -144,12 +144,15 @@ void VertexArray::draw(Primitive mode, int count, size_t firstOrByteOffset) cons
   }
 }
 
-void VertexArray::drawInstanced(Primitive mode, int count, int instances) const {
+void VertexArray::drawInstanced(Primitive mode, int count, int instances,
+                                size_t firstOrByteOffset) const {
   bind();
   if (indexed_) {
-    glDrawElementsInstanced(glPrimitive(mode), count, glIndexType(indexType_), nullptr, instances);
+    glDrawElementsInstanced(glPrimitive(mode), count, glIndexType(indexType_),
+                            reinterpret_cast<const void*>(firstOrByteOffset), instances);
   } else {
-    glDrawArraysInstanced(glPrimitive(mode), 0, count, instances);
+    glDrawArraysInstanced(glPrimitive(mode), static_cast<GLint>(firstOrByteOffset), count,
+                          instances);
   }
 }
 

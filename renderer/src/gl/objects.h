@@ -56,7 +56,7 @@ class VertexArray {
   // Draws with the bound program: indexed when an index buffer is set, else arrays.
   void draw(Primitive mode, int count, size_t firstOrByteOffset = 0) const;
   // The same, `instances` times (gl_InstanceID 0..instances-1).
-  void drawInstanced(Primitive mode, int count, int instances) const;
+  void drawInstanced(Primitive mode, int count, int instances, size_t firstOrByteOffset = 0) const;
   GLuint id() const { return handle_.id(); }
 
  private:

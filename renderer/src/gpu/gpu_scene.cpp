@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "scene/mesh_lod.h"
+
 namespace penumbra {
 namespace {
 
@@ -59,7 +61,19 @@ gl::Wrap wrap(int w) {
 
 Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   auto gs = std::make_unique<GpuScene>();
-  for (const Mesh& mesh : scene.meshes) {
+  // Each mesh's largest scale over its instances, for its capture stand-in's error bound.
+  std::vector<float> meshScale(scene.meshes.size(), 0.0f);
+  for (const Instance& inst : scene.instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(scene.meshes.size())) continue;
+    const glm::mat3 m(inst.world);
+    const float s = std::max(glm::length(m[0]), std::max(glm::length(m[1]), glm::length(m[2])));
+    float& scale = meshScale[static_cast<size_t>(inst.mesh)];
+    scale = std::max(scale, s);
+  }
+  const float sceneDiagonal =
+      scene.bounds.valid() ? glm::length(scene.bounds.max - scene.bounds.min) : 0.0f;
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& mesh = scene.meshes[mi];
     std::vector<GpuPrimitive*> prims;
     for (const Primitive& prim : mesh.primitives) {
       auto p = std::make_unique<GpuPrimitive>();
@@ -95,7 +109,18 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       } else {
         p->vao.setConstant(kColor, 1, 1, 1, 1);
       }
-      auto ib = gl::Buffer::create(gl::BufferKind::Index, std::span<const uint32_t>(prim.indices));
+      // The capture stand-in goes after the primitive's own indices, in the same buffer.
+      const std::vector<uint32_t> lod = captureLod(prim, meshScale[mi], sceneDiagonal);
+      p->captureIndexCount = static_cast<int>(lod.empty() ? prim.indices.size() : lod.size());
+      p->captureByteOffset = lod.empty() ? 0 : prim.indices.size() * sizeof(uint32_t);
+      std::vector<uint32_t> indices;
+      if (!lod.empty()) {
+        indices.reserve(prim.indices.size() + lod.size());
+        indices.insert(indices.end(), prim.indices.begin(), prim.indices.end());
+        indices.insert(indices.end(), lod.begin(), lod.end());
+      }
+      auto ib = gl::Buffer::create(gl::BufferKind::Index,
+                                   std::span<const uint32_t>(lod.empty() ? prim.indices : indices));
       if (!ib) return ib.error();
       p->vao.setIndexBuffer(*ib, gl::IndexType::UInt32);
       p->buffers.push_back(std::move(*ib));

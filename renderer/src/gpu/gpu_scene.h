@@ -20,6 +20,10 @@ struct GpuPrimitive {
   gl::VertexArray vao;
   std::vector<gl::Buffer> buffers;
   int indexCount = 0;
+  // The probe captures' stand-in (scene/mesh_lod.h), after the primitive's own indices in the
+  // same buffer; the primitive itself (offset 0) where it has none.
+  int captureIndexCount = 0;
+  size_t captureByteOffset = 0;
   int material = -1;
   Bounds bounds;
 };

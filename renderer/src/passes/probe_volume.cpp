@@ -54,7 +54,7 @@ Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
   }
   v.quad_ = gl::VertexArray::create();
   for (int i = 0; i < kMaxCaptureLights / kMaxShadowMaps; ++i) {
-    auto sp = ShadowPass::create(library, kLightMapSize);
+    auto sp = ShadowPass::create(library, kLightMapSize, true);
     if (!sp) return sp.error();
     v.lightMaps_.push_back(std::move(*sp));
   }

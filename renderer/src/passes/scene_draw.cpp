@@ -27,8 +27,9 @@ void drawItemBothSides(const gl::Program& program, const GpuScene& scene, const 
   program.set("uSingleSided", m.doubleSided ? 0 : 1);
   GpuScene::bindTransform(program, item);
   scene.bindMaterial(program, item.material);
-  item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->indexCount,
-                                    instances);
+  // Only the probe captures draw this way: with the primitive's capture stand-in.
+  item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->captureIndexCount,
+                                    instances, item.primitive->captureByteOffset);
 }
 
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,

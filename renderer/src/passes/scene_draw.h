@@ -18,7 +18,8 @@ void drawItems(const gl::Program& program, const GpuScene& scene,
 
 // Both faces of every item, with uSingleSided telling the shader whether a back face is the
 // inside of a closed surface (a probe capture's test for probes buried in geometry), each
-// drawn `instances` times (a capture's cube faces).
+// drawn `instances` times (a capture's cube faces), with the primitive's capture stand-in
+// (GpuPrimitive::captureIndexCount; scene/mesh_lod.h).
 void drawItemBothSides(const gl::Program& program, const GpuScene& scene, const DrawItem& item,
                        gl::PipelineState state, int instances = 1);
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,

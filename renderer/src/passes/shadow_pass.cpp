@@ -75,12 +75,14 @@ Result<ShadowCasterPrograms> shadowCasterPrograms(gl::ShaderLibrary& library) {
   return ShadowCasterPrograms{*program, *alphaProgram};
 }
 
-Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize) {
+Result<ShadowPass> ShadowPass::create(gl::ShaderLibrary& library, int mapSize,
+                                      bool captureStandIns) {
   ShadowPass pass;
   auto programs = shadowCasterPrograms(library);
   if (!programs) return programs.error();
   pass.programs_ = *programs;
   pass.size_ = mapSize;
+  pass.captureStandIns_ = captureStandIns;
   auto maps = gl::Texture2DArray::create({.width = mapSize,
                                           .height = mapSize,
                                           .format = gl::PixelFormat::Depth24,
@@ -138,12 +140,13 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const ShadowView&
   framebuffers_[static_cast<size_t>(slot)].bind();
   gl::setViewport(0, 0, size_, size_);
   gl::clearDepth(1.0f);
-  drawShadowCasters(programs_, scene, viewProj, coverageFrame, coverageStream);
+  drawShadowCasters(programs_, scene, viewProj, coverageFrame, coverageStream, captureStandIns_);
   return sv;
 }
 
 void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& scene,
-                       const glm::mat4& viewProj, int coverageFrame, int coverageStream) {
+                       const glm::mat4& viewProj, int coverageFrame, int coverageStream,
+                       bool standIns) {
   // Both faces cast: open meshes and single-sided walls must still block light.
   gl::apply({.depthTest = gl::DepthTest::Less,
              .depthWrite = true,
@@ -167,7 +170,12 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
         }
         GpuScene::bindTransform(program, item);
         if (alpha) scene.bindMaterial(program, item.material);
-        item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+        const GpuPrimitive& prim = *item.primitive;
+        if (standIns) {
+          prim.vao.draw(gl::Primitive::Triangles, prim.captureIndexCount, prim.captureByteOffset);
+        } else {
+          prim.vao.draw(gl::Primitive::Triangles, prim.indexCount);
+        }
       }
     }
   }

@@ -47,13 +47,19 @@ struct ShadowCasterPrograms {
 };
 Result<ShadowCasterPrograms> shadowCasterPrograms(gl::ShaderLibrary& library);
 
-// Draws every shadow caster of the scene into the bound depth target with the given view.
+// Draws every shadow caster of the scene into the bound depth target with the given view;
+// `standIns`: each primitive's capture stand-in (GpuPrimitive::captureIndexCount), for maps
+// that only light the probe captures, which draw those too.
 void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& scene,
-                       const glm::mat4& viewProj, int coverageFrame, int coverageStream);
+                       const glm::mat4& viewProj, int coverageFrame, int coverageStream,
+                       bool standIns = false);
 
 class ShadowPass {
  public:
-  static Result<ShadowPass> create(gl::ShaderLibrary& library, int mapSize);
+  // `captureStandIns`: maps for the probe captures only, drawn with the primitives' capture
+  // stand-ins like the captures themselves.
+  static Result<ShadowPass> create(gl::ShaderLibrary& library, int mapSize,
+                                   bool captureStandIns = false);
   // Renders map `slot` for a light sample; returns its view for the lighting pass.
   ShadowView render(int slot, const GpuScene& scene, const glm::vec3& origin,
                     const glm::vec3& direction, const glm::vec3& upHint, int coverageFrame,
@@ -76,6 +82,7 @@ class ShadowPass {
  private:
   ShadowCasterPrograms programs_;
   int size_ = 0;
+  bool captureStandIns_ = false;
   gl::Texture2DArray maps_;
   std::array<gl::Framebuffer, kMaxShadowMaps> framebuffers_;
 };
