@@ -1,9 +1,11 @@
 // Decoders for compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression)
 // and textures (KHR_texture_basisu: KTX2), loaded only when a scene's glTF names one of the
-// extensions, so the core module stays small.
+// extensions, so the core module stays small; and meshoptimizer's simplifier, for a glTF with
+// an accessor large enough to hold a mesh that gets a capture stand-in
+// (renderer/src/scene/mesh_lod.h).
 // They are the decoders their authors publish on npm, copied by tools/build-web from
 // web/node_modules (pinned by web/package-lock.json) into lib/decoders/ next to this file:
-//   meshopt_decoder.mjs                                   meshoptimizer (an ES module)
+//   meshopt_decoder.mjs, meshopt_simplifier.mjs           meshoptimizer (ES modules)
 //   draco_decoder_gltf_nodejs.js + draco_decoder_gltf.wasm  Google's Draco glTF decoder
 //                                  (draco3dgltf; an Emscripten UMD script that also runs in a page)
 //   basis_transcoder.js + .wasm    Binomial's Basis Universal transcoder, as three.js ships it
@@ -24,6 +26,22 @@ const text = new TextDecoder();
 let meshopt = null;  // promise of the MeshoptDecoder, once asked for
 let draco = null;    // promise of the Draco decoder module, once asked for
 let basis = null;    // promise of the Basis Universal transcoder module, once asked for
+let simplifier = null;  // promise of the MeshoptSimplifier, once asked for
+
+// renderer/src/scene/mesh_lod.h kCaptureLodMinTriangles: a primitive with fewer triangles is
+// never simplified, so a file whose accessors all hold fewer elements than its indices needs
+// no simplifier.
+const CAPTURE_LOD_MIN_INDICES = 3 * 4096;
+
+function hasLargeAccessor(json) {
+  try {
+    const accessors = JSON.parse(json).accessors;
+    return Array.isArray(accessors) &&
+      accessors.some((a) => a && Number(a.count) >= CAPTURE_LOD_MIN_INDICES);
+  } catch {
+    return false;  // the loader reports malformed JSON itself
+  }
+}
 
 // The glTF JSON of a staged file: a .glb's first (JSON) chunk, or a .gltf's text; '' otherwise.
 function gltfJsonText(bytes) {
@@ -42,13 +60,14 @@ function gltfJsonText(bytes) {
 // Which decoders the staged files need: those whose extension a glTF's JSON names (in
 // extensionsUsed/Required or on a primitive or buffer view).
 export function neededDecoders(files) {
-  const need = { draco: false, meshopt: false, basis: false };
+  const need = { draco: false, meshopt: false, basis: false, simplifier: false };
   for (const f of files) {
     if (!/\.(glb|gltf)$/i.test(f.path)) continue;
     const json = gltfJsonText(f.bytes);
     need.draco ||= json.includes(DRACO);
     need.meshopt ||= json.includes(MESHOPT);
     need.basis ||= json.includes(BASISU);
+    need.simplifier ||= hasLargeAccessor(json);
   }
   return need;
 }
@@ -65,6 +84,18 @@ function loadMeshopt() {
     throw new PenumbraError(`cannot load the meshopt decoder (${url}): ${why(e)}`);
   });
   return meshopt;
+}
+
+function loadSimplifier() {
+  const url = new URL('meshopt_simplifier.mjs', BASE).href;
+  simplifier ||= import(url).then(async ({ MeshoptSimplifier }) => {
+    await MeshoptSimplifier.ready;
+    return MeshoptSimplifier;
+  }).catch((e) => {
+    simplifier = null;
+    throw new PenumbraError(`cannot load the meshopt simplifier (${url}): ${why(e)}`);
+  });
+  return simplifier;
 }
 
 // A classic script that defines a global factory (Emscripten's UMD output), added once.
@@ -123,12 +154,14 @@ function loadBasis() {
 // wasm module, before its synchronous load runs. Rejects with a one-line PenumbraError.
 export async function provideDecoders(mod, files) {
   const need = neededDecoders(files);
-  if (!need.draco && !need.meshopt && !need.basis) return;
-  const [m, d, b] = await Promise.all([need.meshopt ? loadMeshopt() : null,
-                                       need.draco ? loadDraco() : null,
-                                       need.basis ? loadBasis() : null]);
+  if (!need.draco && !need.meshopt && !need.basis && !need.simplifier) return;
+  const [m, d, b, s] = await Promise.all([need.meshopt ? loadMeshopt() : null,
+                                          need.draco ? loadDraco() : null,
+                                          need.basis ? loadBasis() : null,
+                                          need.simplifier ? loadSimplifier() : null]);
   mod.penumbraDecoders = { ...mod.penumbraDecoders };
   if (m) mod.penumbraDecoders.meshopt = m;
   if (d) mod.penumbraDecoders.draco = d;
   if (b) mod.penumbraDecoders.basis = b;
+  if (s) mod.penumbraDecoders.simplifier = s;
 }
