@@ -98,7 +98,7 @@ TEST(MeshLodTest, TheBoundIsInWorldUnits) {
 }
 
 TEST(MeshLodTest, SmallOrDegenerateMeshesKeepTheirOwnTriangles) {
-  const Primitive small = bumpySphere(32, 32);  // 2,048 triangles
+  const Primitive small = bumpySphere(16, 16);  // 512 triangles
   EXPECT_TRUE(captureLod(small, 1.0f, 20.0f).empty());
   const Primitive sphere = bumpySphere(128, 128);
   EXPECT_TRUE(captureLod(sphere, 0.0f, 20.0f).empty());

@@ -31,7 +31,7 @@ let simplifier = null;  // promise of the MeshoptSimplifier, once asked for
 // renderer/src/scene/mesh_lod.h kCaptureLodMinTriangles: a primitive with fewer triangles is
 // never simplified, so a file whose accessors all hold fewer elements than its indices needs
 // no simplifier.
-const CAPTURE_LOD_MIN_INDICES = 3 * 4096;
+const CAPTURE_LOD_MIN_INDICES = 3 * 1024;
 
 function hasLargeAccessor(json) {
   try {

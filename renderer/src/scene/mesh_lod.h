@@ -18,8 +18,9 @@
 
 namespace penumbra {
 
-// Primitives with fewer triangles are drawn whole: simplifying them would save little.
-inline constexpr size_t kCaptureLodMinTriangles = 4096;
+// Primitives with fewer triangles are drawn whole: simplifying them would save little (the
+// material grid's 25 spheres of 3968 triangles each do get stand-ins).
+inline constexpr size_t kCaptureLodMinTriangles = 1024;
 // The largest deviation of a stand-in from its mesh, as a share of the scene's bounding-box
 // diagonal: under half a capture texel seen from a fifth of the probe spacing at the default
 // density (16 texels over 90 degrees; the spacing is about a sixth of the diagonal).
