@@ -4,6 +4,7 @@
 //
 //   node web/tests/bench_frames.mjs [--frames 64] [--size 512] [--scenes cornell_box,...]
 //                                   [--runs 2] [--query '&k=v'] [--label L]
+// (The scenes web/dist serves: cornell_box, material_grid, glass; tools/build-web.)
 //
 // For each scene: a size x size window (DPR 1), the viewer with whole frames at full size
 // (adaptive=0&split=1: nothing adapts, so the figures compare builds), m frames of a still
@@ -46,8 +47,10 @@ async function run(server, scene) {
       p.viewer.on('progress', ({ frame }) => log.presents.push({ frame, t: performance.now() }));
       p.viewer.on('converged', () => { log.converged = performance.now(); });
     });
+    // A load error (a scene the page does not serve) ends the run at once.
     await page.waitForFunction(() => window.__bench.converged !== null ||
-                                     window.penumbraPage.fatal, null,
+                                     window.penumbraPage.fatal ||
+                                     window.penumbraPage.errors.length > 0, null,
                                { timeout: 600_000, polling: 100 });
     const r = await page.evaluate(() => ({ log: window.__bench,
                                            state: window.penumbraPage.viewer.state,
