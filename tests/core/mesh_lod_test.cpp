@@ -107,6 +107,10 @@ TEST(MeshLodTest, SmallOrDegenerateMeshesKeepTheirOwnTriangles) {
   Primitive flat = sphere;
   flat.bounds = Bounds{};  // no extent known
   EXPECT_TRUE(captureLod(flat, 1.0f, 20.0f).empty());
+  // A NaN vertex the loader left unreferenced (it drops the triangles on it).
+  Primitive poisoned = sphere;
+  poisoned.positions.push_back(glm::vec3(NAN, 0.0f, 0.0f));
+  EXPECT_TRUE(captureLod(poisoned, 1.0f, 20.0f).empty());
 }
 
 }  // namespace

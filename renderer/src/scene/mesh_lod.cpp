@@ -14,6 +14,11 @@ std::vector<uint32_t> captureLod(const Primitive& prim, float maxScale, float sc
       !std::isfinite(extent * maxScale * sceneDiagonal)) {
     return {};
   }
+  // The loader drops triangles on non-finite positions but keeps the vertices; the simplifier
+  // scales by every vertex, so one NaN would void its error bound.
+  for (const glm::vec3& p : prim.positions) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return {};
+  }
   // The allowed deviation in world units, back in the mesh's own (its largest instance).
   const float relative = kCaptureLodErrorFraction * sceneDiagonal / (maxScale * extent);
   // No triangle count to aim at: the error bound alone decides.

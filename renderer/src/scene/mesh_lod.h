@@ -28,8 +28,8 @@ inline constexpr float kCaptureLodErrorFraction = 1.0f / 512.0f;
 
 // The stand-in's triangle list (indices into prim's vertices) for a primitive drawn at most
 // `maxScale` times its object-space size, in a scene whose diagonal is `sceneDiagonal`. Empty
-// when the primitive is small, the simplifier is not available, or it removes under a quarter
-// of the triangles: then the primitive itself is drawn.
+// when the primitive is small, has a non-finite vertex, the simplifier is not available, or it
+// removes under a quarter of the triangles: then the primitive itself is drawn.
 std::vector<uint32_t> captureLod(const Primitive& prim, float maxScale, float sceneDiagonal);
 
 // Whether this build can simplify (natively always; in the browser once the simplifier is
