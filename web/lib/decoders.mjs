@@ -29,15 +29,19 @@ let basis = null;    // promise of the Basis Universal transcoder module, once a
 let simplifier = null;  // promise of the MeshoptSimplifier, once asked for
 
 // renderer/src/scene/mesh_lod.h kCaptureLodMinTriangles: a primitive with fewer triangles is
-// never simplified, so a file whose accessors all hold fewer elements than its indices needs
-// no simplifier.
+// never simplified, so a file without a primitive of that many indices (or vertices, when it
+// has no indices) needs no simplifier.
 const CAPTURE_LOD_MIN_INDICES = 3 * 1024;
 
-function hasLargeAccessor(json) {
+function hasLargePrimitive(json) {
   try {
-    const accessors = JSON.parse(json).accessors;
-    return Array.isArray(accessors) &&
-      accessors.some((a) => a && Number(a.count) >= CAPTURE_LOD_MIN_INDICES);
+    const gltf = JSON.parse(json);
+    const accessors = Array.isArray(gltf.accessors) ? gltf.accessors : [];
+    const count = (i) => Number(accessors[i]?.count) || 0;
+    return (Array.isArray(gltf.meshes) ? gltf.meshes : []).some((m) =>
+      (Array.isArray(m?.primitives) ? m.primitives : []).some((p) =>
+        (p?.indices !== undefined ? count(p.indices) : count(p?.attributes?.POSITION)) >=
+          CAPTURE_LOD_MIN_INDICES));
   } catch {
     return false;  // the loader reports malformed JSON itself
   }
@@ -67,7 +71,7 @@ export function neededDecoders(files) {
     need.draco ||= json.includes(DRACO);
     need.meshopt ||= json.includes(MESHOPT);
     need.basis ||= json.includes(BASISU);
-    need.simplifier ||= hasLargeAccessor(json);
+    need.simplifier ||= hasLargePrimitive(json);
   }
   return need;
 }
