@@ -42,6 +42,9 @@ const int MAX_PUNCTUAL = PN_MAX_PUNCTUAL_LIGHTS;
 
 uniform vec4 uViewOrigin;  // (camera position, 1), or (direction to the viewer, 0) if orthographic
 uniform float uEnvWeight;  // weight of the environment term in this frame (0 or 1)
+// 1 where the surface's emission lights other surfaces (probe captures, screen-space indirect
+// light); 0 on an area light's visible face, whose light the analytic area light already gives.
+uniform float uIndirectEmission;
 
 uniform int uAreaCount;
 uniform int uAreaLight[MAX_AREA];        // light index of each sample (sorted)
@@ -509,15 +512,20 @@ void main() {
 
 #endif
 #if PN_CAPTURE
-  // Emitters are left out as in screen-space indirect light: their light is the area lights'.
-  fragColor = vec4(color, probeDistance * uEnvWeight);
+  // Emissive surfaces light the probes (once, in the first batch), but for the area lights'
+  // visible faces: their light is the area lights'.
+  fragColor = vec4(color + s.emissive * (uEnvWeight * uIndirectEmission),
+                   probeDistance * uEnvWeight);
   return;
 #endif
   color += s.emissive * uEnvWeight;
-  // Alpha marks what screen-space indirect light may reuse: emitters are excluded (their light
-  // is already counted by the analytic area lights), and extra light batches add nothing.
-  // Alpha-blended BLEND surfaces (frame 1) put their coverage there for the blend instead.
-  float reusable = max(s.emissive.r, max(s.emissive.g, s.emissive.b)) > 0.0 ? 0.0 : 1.0;
+  // Alpha marks what screen-space indirect light may reuse: an area light's visible face is
+  // excluded (its light is already counted by the analytic area light), and extra light batches
+  // add nothing. Alpha-blended BLEND surfaces (frame 1) put their coverage there for the blend
+  // instead.
+  float reusable =
+      uIndirectEmission > 0.5 || max(s.emissive.r, max(s.emissive.g, s.emissive.b)) <= 0.0 ? 1.0
+                                                                                           : 0.0;
   bool blended = uAlphaMode == 2 && uCoverageFrame < 0;
   fragColor = vec4(color, uEnvWeight * (blended ? s.baseColor.a : reusable));
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #include "gpu/gpu_scene.h"
@@ -112,6 +113,50 @@ TEST_F(ProbeVolumeGLTest, ClosedBoxReachesTheRadiosityBalance) {
   EXPECT_NEAR(with, expected, 0.10 * expected);
   // Screen-space light alone misses most of the bounces: the test can tell the difference.
   EXPECT_LT(without, 0.85 * expected);
+}
+
+// An emissive panel that is not an area light's visible face lights the room through the
+// volume (Penumbra has no direct light from emissive geometry): the closed box of the test
+// above with the panel instead of the light reaches the same balance, plus the panel's own
+// radiance where the views see it. Area lights' visible faces stay out (their light is the
+// analytic light's): the same panel as one must not light the room.
+TEST_F(ProbeVolumeGLTest, EmissiveSurfacesLightTheRoom) {
+  const float rho = 0.5f, nits = 10.0f, size = 0.5f;
+  Material panel = pureLambert(0.0f);
+  panel.emissiveFactor = glm::vec3(1.0f);
+  panel.emissiveStrength = nits;
+  // A square facing down, a little below the ceiling.
+  Mesh quad;
+  Primitive p;
+  const float h = 0.5f * size, y = 0.95f;
+  p.positions = {{-h, y, -h}, {h, y, -h}, {h, y, h}, {-h, y, h}};
+  p.normals.assign(4, glm::vec3(0.0f, -1.0f, 0.0f));
+  p.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from below
+  for (const glm::vec3& v : p.positions) p.bounds.extend(v);
+  p.material = 1;
+  quad.primitives.push_back(p);
+  double mean[2] = {};
+  for (int proxy = 0; proxy < 2; ++proxy) {
+    Scene s;
+    s.materials = {pureLambert(rho), panel};
+    s.meshes.push_back(insideBox({-1, -1, -1}, {1, 1, 1}, 0));
+    s.meshes.push_back(quad);
+    finishScene(s);
+    s.instances[1].castsShadow = proxy == 0;  // the loader's mark of an area light's face
+    auto r = makeRenderer(s, smallSettings(true));
+    ASSERT_TRUE(r);
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    meanRadiance(*r, {0, 0, 0}, axes[0]);  // the volume goes round first
+    for (const glm::vec3& a : axes) mean[proxy] += meanRadiance(*r, {0, 0, 0}, a) / 6.0;
+  }
+  // The walls' balance (closedBoxMean's), and the panel itself: in the upward view it covers
+  // (size / (2 y))^2 of the image (the view spans 2y at the panel's distance y).
+  const double walls = rho * nits * size * size / (24.0 * (1.0 - rho));
+  const double seen = nits * (size / (2.0 * y)) * (size / (2.0 * y)) / 6.0;
+  EXPECT_NEAR(mean[0], walls + seen, 0.25 * walls) << "walls " << walls << ", panel " << seen;
+  EXPECT_NEAR(mean[1], seen, 0.1 * walls) << "an area light's face lit the room";
+  std::printf("# emissive panel: %.4f (expected %.4f), as an area light's face %.4f (%.4f)\n",
+              mean[0], walls + seen, mean[1], seen);
 }
 
 // Two rooms separated by a double-sided wall of zero thickness, a light in the left one: the

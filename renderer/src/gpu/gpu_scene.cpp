@@ -176,6 +176,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
       item.castsShadow = inst.castsShadow;
+      item.lightProxy = !inst.castsShadow;
       Bounds wb;
       if (p->bounds.valid()) {
         for (int c = 0; c < 8; ++c) {
@@ -351,6 +352,7 @@ void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
   program.set("uModel", item.model);
   program.set("uNormalMatrix", item.normalMatrix);
   program.set("uLayer", item.layer);
+  program.set("uIndirectEmission", item.lightProxy ? 0.0f : 1.0f);
 }
 
 }  // namespace penumbra

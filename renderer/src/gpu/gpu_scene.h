@@ -67,6 +67,9 @@ struct DrawItem {
   glm::vec3 center{0.0f};
   int layer = 0;            // index in the scene's draw order: the stochastic-coverage key (uLayer)
   bool castsShadow = true;  // Instance::castsShadow
+  // An area light's visible face (extras.area_light_proxy; Instance::castsShadow false): its
+  // emission lights nothing else, the analytic light does.
+  bool lightProxy = false;
 };
 
 class GpuScene {
@@ -90,7 +93,7 @@ class GpuScene {
     const Material& m = material(item.material).source;
     return m.alphaMode != AlphaMode::Opaque || m.transmission > 0.0f;
   }
-  // Sets uModel, uNormalMatrix and uLayer of a draw item.
+  // Sets uModel, uNormalMatrix, uLayer and uIndirectEmission of a draw item.
   static void bindTransform(const gl::Program& program, const DrawItem& item);
 
  private:
