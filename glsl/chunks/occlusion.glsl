@@ -56,8 +56,13 @@ bool traceOcclusion(vec3 p, vec3 d, float jitter, out vec3 hitRadiance) {
     done = done || occluded;
   }
   if (hit && uIndirectEnabled) {
-    vec4 acc = texture(uAccumulated, hitUv);
-    hitRadiance = max(acc.rgb, vec3(0.0)) * saturate(acc.a);
+    // The hit pixel itself, not a filtered mix: a mix with a lamp's face (alpha 0, radiance in
+    // the hundreds) brought back a share of the lamp, one clamped speckle per such ray. The
+    // same holds for the pixels on the face's edge, which the jittered frames cover partly: only
+    // a pixel that is (almost) all reusable surface is reused, fading out below alpha 0.9.
+    ivec2 hitTexel = clamp(ivec2(hitUv * uViewportSize), ivec2(0), size - 1);
+    vec4 acc = texelFetch(uAccumulated, hitTexel, 0);
+    hitRadiance = max(acc.rgb, vec3(0.0)) * saturate(acc.a) * saturate(10.0 * acc.a - 9.0);
     // Clamped like a path tracer's indirect samples: scaled so no channel exceeds the limit.
     float peak = max(hitRadiance.r, max(hitRadiance.g, hitRadiance.b));
     if (peak > uIndirectClamp) hitRadiance *= uIndirectClamp / peak;
