@@ -23,10 +23,8 @@ export const BASISU = 'KHR_texture_basisu';
 const BASE = new URL('./decoders/', import.meta.url);
 const text = new TextDecoder();
 
-let meshopt = null;  // promise of the MeshoptDecoder, once asked for
 let draco = null;    // promise of the Draco decoder module, once asked for
 let basis = null;    // promise of the Basis Universal transcoder module, once asked for
-let simplifier = null;  // promise of the MeshoptSimplifier, once asked for
 
 // renderer/src/scene/mesh_lod.h kCaptureLodMinTriangles: a primitive with fewer triangles is
 // never simplified, so a file without a primitive of that many indices (or vertices, when it
@@ -78,29 +76,26 @@ export function neededDecoders(files) {
 
 const why = (e) => String(e && e.message ? e.message : e).split('\n')[0];
 
-function loadMeshopt() {
-  const url = new URL('meshopt_decoder.mjs', BASE).href;
-  meshopt ||= import(url).then(async ({ MeshoptDecoder }) => {
-    await MeshoptDecoder.ready;
-    return MeshoptDecoder;
-  }).catch((e) => {
-    meshopt = null;  // a later load may try again
-    throw new PenumbraError(`cannot load the meshopt decoder (${url}): ${why(e)}`);
-  });
-  return meshopt;
+// meshoptimizer's ES modules (decoder, simplifier): the export `name` once its `ready` resolves,
+// loaded at most once per page (a failed load may be tried again).
+const meshoptModules = new Map();
+function loadMeshoptModule(file, name, what) {
+  const url = new URL(file, BASE).href;
+  if (!meshoptModules.has(file)) {
+    meshoptModules.set(file, import(url).then(async (m) => {
+      await m[name].ready;
+      return m[name];
+    }).catch((e) => {
+      meshoptModules.delete(file);
+      throw new PenumbraError(`cannot load the ${what} (${url}): ${why(e)}`);
+    }));
+  }
+  return meshoptModules.get(file);
 }
-
-function loadSimplifier() {
-  const url = new URL('meshopt_simplifier.mjs', BASE).href;
-  simplifier ||= import(url).then(async ({ MeshoptSimplifier }) => {
-    await MeshoptSimplifier.ready;
-    return MeshoptSimplifier;
-  }).catch((e) => {
-    simplifier = null;
-    throw new PenumbraError(`cannot load the meshopt simplifier (${url}): ${why(e)}`);
-  });
-  return simplifier;
-}
+const loadMeshopt = () => loadMeshoptModule('meshopt_decoder.mjs', 'MeshoptDecoder',
+                                            'meshopt decoder');
+const loadSimplifier = () => loadMeshoptModule('meshopt_simplifier.mjs', 'MeshoptSimplifier',
+                                               'meshopt simplifier');
 
 // A classic script that defines a global factory (Emscripten's UMD output), added once.
 function loadScript(url, global) {
