@@ -1,8 +1,8 @@
 // Decoders for compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression)
 // and textures (KHR_texture_basisu: KTX2), loaded only when a scene's glTF names one of the
 // extensions, so the core module stays small; and meshoptimizer's simplifier, for a glTF with
-// an accessor large enough to hold a mesh that gets a capture stand-in
-// (renderer/src/scene/mesh_lod.h).
+// a primitive large enough for a capture stand-in (renderer/src/scene/mesh_lod.h). The
+// simplifier is optional: if it cannot load, the scene loads and its meshes are captured whole.
 // They are the decoders their authors publish on npm, copied by tools/build-web from
 // web/node_modules (pinned by web/package-lock.json) into lib/decoders/ next to this file:
 //   meshopt_decoder.mjs, meshopt_simplifier.mjs           meshoptimizer (ES modules)
@@ -150,14 +150,19 @@ function loadBasis() {
 }
 
 // Loads the decoders the staged files need (each at most once per page) and hands them to the
-// wasm module, before its synchronous load runs. Rejects with a one-line PenumbraError.
+// wasm module, before its synchronous load runs. Rejects with a one-line PenumbraError (not
+// for the simplifier, which is optional).
 export async function provideDecoders(mod, files) {
   const need = neededDecoders(files);
   if (!need.draco && !need.meshopt && !need.basis && !need.simplifier) return;
   const [m, d, b, s] = await Promise.all([need.meshopt ? loadMeshopt() : null,
                                           need.draco ? loadDraco() : null,
                                           need.basis ? loadBasis() : null,
-                                          need.simplifier ? loadSimplifier() : null]);
+                                          need.simplifier ? loadSimplifier().catch((e) => {
+                                            console.warn(`[penumbra] ${why(e)}: meshes are ` +
+                                                         'captured whole');
+                                            return null;
+                                          }) : null]);
   mod.penumbraDecoders = { ...mod.penumbraDecoders };
   if (m) mod.penumbraDecoders.meshopt = m;
   if (d) mod.penumbraDecoders.draco = d;

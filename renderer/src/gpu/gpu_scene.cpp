@@ -176,7 +176,6 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
       item.castsShadow = inst.castsShadow;
-      item.lightProxy = !inst.castsShadow;
       Bounds wb;
       if (p->bounds.valid()) {
         for (int c = 0; c < 8; ++c) {
@@ -352,7 +351,7 @@ void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
   program.set("uModel", item.model);
   program.set("uNormalMatrix", item.normalMatrix);
   program.set("uLayer", item.layer);
-  program.set("uIndirectEmission", item.lightProxy ? 0.0f : 1.0f);
+  program.set("uIndirectEmission", item.castsShadow ? 1.0f : 0.0f);  // 0: a lamp's face
 }
 
 }  // namespace penumbra

@@ -65,11 +65,10 @@ struct DrawItem {
   glm::mat3 normalMatrix{1.0f};
   bool mirrored = false;  // negative determinant: front faces wind clockwise
   glm::vec3 center{0.0f};
-  int layer = 0;            // index in the scene's draw order: the stochastic-coverage key (uLayer)
-  bool castsShadow = true;  // Instance::castsShadow
-  // An area light's visible face (extras.area_light_proxy; Instance::castsShadow false): its
-  // emission lights nothing else, the analytic light does.
-  bool lightProxy = false;
+  int layer = 0;  // index in the scene's draw order: the stochastic-coverage key (uLayer)
+  // Instance::castsShadow: false exactly for an area light's visible face
+  // (extras.area_light_proxy), whose emission also lights nothing else (the light does).
+  bool castsShadow = true;
 };
 
 class GpuScene {

@@ -171,11 +171,8 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
         GpuScene::bindTransform(program, item);
         if (alpha) scene.bindMaterial(program, item.material);
         const GpuPrimitive& prim = *item.primitive;
-        if (standIns) {
-          prim.vao.draw(gl::Primitive::Triangles, prim.captureIndexCount, prim.captureByteOffset);
-        } else {
-          prim.vao.draw(gl::Primitive::Triangles, prim.indexCount);
-        }
+        prim.vao.draw(gl::Primitive::Triangles, standIns ? prim.captureIndexCount : prim.indexCount,
+                      standIns ? prim.captureByteOffset : 0);
       }
     }
   }

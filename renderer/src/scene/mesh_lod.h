@@ -3,8 +3,8 @@
 // 114k-triangle model cost 46 ms a capture, all of it geometry. The stand-in keeps the surface
 // within a small share of the scene's diagonal (meshoptimizer's simplifier), so the probes'
 // irradiance and visibility are unchanged in practice. Natively Debian's meshoptimizer; in the
-// browser the simplifier its author publishes on npm (web/lib/decoders.mjs loads it for a file
-// with a large enough accessor).
+// browser the simplifier its author publishes on npm (web/lib/decoders.mjs loads it for a glTF
+// with a primitive of at least kCaptureLodMinTriangles).
 #pragma once
 
 #include <cstddef>
