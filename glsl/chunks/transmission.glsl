@@ -16,13 +16,14 @@ uniform mat4 uViewProj;  // this frame's, jittered like the copy
 #if !PN_OCCLUSION
 uniform sampler2D uPrepass;  // xyz view-space normal, w linear depth (0 = background)
 uniform mat4 uView;
+uniform vec2 uViewportSize;  // the part of the targets this frame draws
 #endif
 
 // Radiance arriving through the surface at p (unit normal n facing the viewer, toward-viewer
 // v), and its Beer-Lambert transmittance.
 vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
   ivec2 here = ivec2(gl_FragCoord.xy);
-  ivec2 size = textureSize(uBehind, 0);
+  ivec2 size = ivec2(uViewportSize);  // of the copy, only this frame's drawn part
   vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(gl_FragCoord.xy, 9.0), alpha);
   float ownDepth = -(uView * vec4(p, 1.0)).z;
   float behindDepth = uBehindDepthValid != 0 ? texelFetch(uPrepass, here, 0).w : -1.0;

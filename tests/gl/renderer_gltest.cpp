@@ -2,6 +2,7 @@
 // in the passes it issues, convergence, determinism and the half-float path.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -286,6 +287,74 @@ TEST_F(RendererGLTest, SameInputsAndSeedGiveBitIdenticalImages) {
   auto c = makeRenderer(l);
   runToEnd(*c);
   EXPECT_NE(c->readRadiance()->pixels, ia->pixels) << "the seed must change the samples";
+}
+
+// `image` resized to width x height by bilinear interpolation between pixel centres (clamped
+// at the borders), as a reference for the preview's upsampling.
+Image bilinearResize(const Image& image, int width, int height) {
+  Image out(width, height, image.channels);
+  const auto at = [&](int x, int y, int c) {
+    x = std::clamp(x, 0, image.width - 1);
+    y = std::clamp(y, 0, image.height - 1);
+    return image.pixel(x, y)[c];
+  };
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float px = (x + 0.5f) * image.width / width - 0.5f;
+      const float py = (y + 0.5f) * image.height / height - 0.5f;
+      const int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
+      const float fx = px - x0, fy = py - y0;
+      for (int c = 0; c < image.channels; ++c) {
+        const float bottom = at(x0, y0, c) + (at(x0 + 1, y0, c) - at(x0, y0, c)) * fx;
+        const float top = at(x0, y0 + 1, c) + (at(x0 + 1, y0 + 1, c) - at(x0, y0 + 1, c)) * fx;
+        out.pixel(x, y)[c] = bottom + (top - bottom) * fy;
+      }
+    }
+  }
+  return out;
+}
+
+TEST_F(RendererGLTest, PreviewIsFrameOneAtAQuarterOfThePixelsAndStaysOutOfTheMean) {
+  Loaded l = loadJob("material_grid/material_grid.json",
+                     {{"width", "96"}, {"height", "72"}, {"frames", "8"}},
+                     {.faceSize = 32, .samples = 32});
+  // Without the probe volume, whose captures (kept across views) would change frame 1.
+  l.settings.progressive.probeVolume = false;
+  auto fresh = makeRenderer(l);
+  ASSERT_EQ(*fresh->step(), 1);
+  auto frame1 = fresh->readRadiance();
+  ASSERT_TRUE(frame1.ok());
+  Loaded half = l;
+  half.settings.width = 48;
+  half.settings.height = 36;
+  auto small = makeRenderer(half);
+  ASSERT_EQ(*small->step(), 1);
+  auto smallFrame1 = small->readRadiance();
+  ASSERT_TRUE(smallFrame1.ok());
+
+  // A preview in the middle of a run (the view started to move): frame 1 at 48x36, upsampled.
+  auto r = makeRenderer(l);
+  ASSERT_TRUE(r->step().ok());
+  ASSERT_TRUE(r->step().ok());
+  ASSERT_TRUE(r->preview().ok());
+  EXPECT_EQ(r->framesDone(), 0);
+  auto preview = r->readRadiance();
+  ASSERT_TRUE(preview.ok());
+  const Image expected = bilinearResize(*smallFrame1, 96, 72);
+  const double err = rmse(*preview, expected);
+  std::printf("preview: rmse %.6f against frame 1 at 48x36 upsampled, %.6f against frame 1\n", err,
+              rmse(*preview, *frame1));
+  EXPECT_LT(err, 1e-4);
+  EXPECT_GT(rmse(*preview, *frame1), 100 * err) << "a quarter of the pixels, not frame 1";
+  // It stays out of the mean: the next step draws frame 1 as a fresh renderer does.
+  ASSERT_EQ(*r->step(), 1);
+  EXPECT_EQ(r->readRadiance()->pixels, frame1->pixels);
+
+  // At scale 1 the preview is frame 1 itself.
+  l.settings.progressive.previewScale = 1.0f;
+  auto whole = makeRenderer(l);
+  ASSERT_TRUE(whole->preview().ok());
+  EXPECT_LT(rmse(*whole->readRadiance(), *frame1), 1e-5);
 }
 
 TEST_F(RendererGLTest, HalfFloatAccumulationConvergesToTheFloatResult) {

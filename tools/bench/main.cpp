@@ -37,6 +37,7 @@ struct Row {
   int width, height, frames;
   double firstMs, perFrameMs, totalS;
   size_t triangles;
+  double previewMs = 0;  // Renderer::preview and its tone map: the median of kPreviews
   // With --breakdown: milliseconds summed over frames 1..m, per pass, and frame 1's display.
   double readBackMs = 0;
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0, firstDisplayMs = 0;
@@ -72,6 +73,19 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   while (!(*r)->converged()) PN_TRY((*r)->step());
   (void)(*r)->readDisplay();
   (*r)->restart();
+  // The preview a moving view shows, drawn again and again as while orbiting (nothing is
+  // captured into the probe volume right after a restart).
+  constexpr int kPreviews = 5;
+  std::vector<double> previews;
+  for (int i = 0; i < kPreviews; ++i) {
+    const auto p0 = Clock::now();
+    PN_TRY((*r)->preview());
+    PN_TRY((*r)->toneMap());
+    (*r)->finish();
+    previews.push_back(ms(p0, Clock::now()));
+  }
+  std::sort(previews.begin(), previews.end());
+  (*r)->restart();
 
   Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
           w,
@@ -81,6 +95,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
           0,
           0,
           scene->triangleCount()};
+  row.previewMs = previews[kPreviews / 2];
   auto add = [&row](const FrameStats& f) {
     row.prepassMs += f.prepassMs;
     row.shadowMs += f.shadowMs;
@@ -210,9 +225,9 @@ int main(int argc, char** argv) {
   std::printf("# %s\n", (*ctx)->description().c_str());
   if (giRounds > 0) return giCost(scenes, sizes, frames, giRounds, !noProbeCache);
   std::printf(
-      "| scene | triangles | size | m | first frame (ms) | per frame (ms) | time to m (s) | "
-      "read-back (ms) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+      "| scene | triangles | size | m | preview (ms) | first frame (ms) | per frame (ms) | "
+      "time to m (s) | read-back (ms) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& scene : scenes) {
     for (const auto& size : sizes) {
       int w = 0, h = 0;
@@ -222,15 +237,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "penumbra-bench: error: %s\n", row.message().c_str());
         return 1;
       }
-      std::printf("| %s | %zu | %dx%d | %d | %.1f | %.1f | %.2f | %.1f |\n", row->scene.c_str(),
-                  row->triangles, w, h, frames, row->firstMs, row->perFrameMs, row->totalS,
-                  row->readBackMs);
+      std::printf("| %s | %zu | %dx%d | %d | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
+                  row->scene.c_str(), row->triangles, w, h, frames, row->previewMs, row->firstMs,
+                  row->perFrameMs, row->totalS, row->readBackMs);
       if (breakdown) {
         const double n = frames;
         std::printf(
             "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f (%d "
             "passes), accumulate %.1f, probe volume %.1f (%d captures); frame 1: lighting %.1f, "
-            "accumulate %.1f, tone map %.1f | | | | | | | |\n",
+            "accumulate %.1f, tone map %.1f | | | | | | | | |\n",
             row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
             row->lightingPasses, row->accumulateMs / n, row->probeMs / n, row->probeCaptures,
             row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
@@ -238,7 +253,7 @@ int main(int argc, char** argv) {
       if (row->probes.probes > 0) {
         std::printf(
             "|   probe volume: %d probes (%dx%dx%d), %.2f MB GPU memory, %.1f captures per "
-            "probe after both runs | | | | | | | |\n",
+            "probe after both runs | | | | | | | | |\n",
             row->probes.probes, row->probes.counts[0], row->probes.counts[1], row->probes.counts[2],
             static_cast<double>(row->probes.bytes) / 1048576.0, row->probes.meanCaptures);
       }

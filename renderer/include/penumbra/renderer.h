@@ -107,6 +107,12 @@ class Renderer {
   // displayed and read images are the previous complete frame's. Any restart drops a frame in
   // progress.
   Result<FramePart> stepPart();
+  // A preview of the current view for a host whose view is moving: frame 1 (environment light)
+  // drawn at settings().progressive.previewScale of the resolution (a quarter of the pixels at
+  // 0.5) and upsampled into the image, which the display and read-backs then show. It is not
+  // part of the mean: accumulation starts over, and the next step() draws frame 1 at full
+  // resolution, the same frame 1 as without a preview.
+  Status preview();
   // The number of bands of frames that stepPart() begins from now on (1..kMaxFrameTiles, and
   // at most the image height); a frame in progress keeps its own.
   void setFrameTiles(int tiles);

@@ -22,6 +22,10 @@ Result<ToneMapper> parseToneMapper(std::string_view name);
 struct ProgressiveSettings {
   int frames = 128;          // m, the target number of intermediate frames (1..4096)
   float directDelay = 0.3f;  // f_d: direct-light samples start at frame floor(m * f_d)
+  // Renderer::preview, the image shown while the view moves: frame 1 (environment only) drawn
+  // at this fraction of the width and height and upsampled, a quarter of the pixels at 0.5.
+  // Not part of the mean.
+  float previewScale = 0.5f;
   // d_occ in scene units; 0 = automatic: kAutoOcclusionFraction of the scene's bounding-box
   // diagonal, so a model in millimetres and a room in metres both work without a setting.
   float occlusionDistance = 0.0f;

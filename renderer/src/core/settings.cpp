@@ -88,6 +88,10 @@ const SettingInfo kSchema[] = {
      true, "intermediate frames m", PN_FIELD(progressive.frames, int)},
     {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
      "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
+    {"previewScale", "progressive", "previewScale", "--preview-scale", SettingType::Float, 0.25, 1,
+     false, false, false, true,
+     "resolution scale of the preview shown while the view moves (frame 1, upsampled)",
+     PN_FIELD(progressive.previewScale, float)},
     {"occlusionDistance", "progressive", "occlusionDistance", "--occlusion-distance",
      SettingType::Float, 0, 1e9, false, false, false, true,
      "d_occ, the length of occlusion rays in scene units; 0 = automatic, a quarter of the "

@@ -1,6 +1,7 @@
 // AccumulatePass: the running mean mean_n = mean_{n-1} + (x_n - mean_{n-1}) / n of the
 // intermediate frames, ping-ponging between the two accumulation targets; non-finite samples
-// are dropped (accumulate.frag).
+// are dropped (accumulate.frag). A frame 1 drawn at a reduced size becomes the mean upsampled
+// (upsample.frag).
 #pragma once
 
 #include "passes/fullscreen_pass.h"
@@ -15,10 +16,16 @@ class AccumulatePass {
   // a frame drawn in bands). The caller makes it current once the whole image is done: until
   // then the previous mean stays readable.
   void draw(const RenderTargets& targets, int n) const;
+  // Frame 1, drawn into the bottom-left drawnWidth x drawnHeight texels of targets.frame,
+  // upsampled into the other accumulation target over the whole image (the caller makes it
+  // current).
+  void upsampleFirst(const RenderTargets& targets, int drawnWidth, int drawnHeight) const;
 
  private:
-  explicit AccumulatePass(FullscreenPass pass) : pass_(std::move(pass)) {}
+  AccumulatePass(FullscreenPass pass, FullscreenPass upsample)
+      : pass_(std::move(pass)), upsample_(std::move(upsample)) {}
   FullscreenPass pass_;
+  FullscreenPass upsample_;
 };
 
 }  // namespace penumbra::passes

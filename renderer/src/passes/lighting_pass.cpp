@@ -12,6 +12,12 @@
 namespace penumbra::passes {
 namespace {
 
+// The part of the targets a batch draws (LightingBatch::drawWidth).
+glm::ivec2 drawnSize(const LightingBatch& b) {
+  return b.drawWidth > 0 ? glm::ivec2(b.drawWidth, b.drawHeight)
+                         : glm::ivec2(b.targets->width, b.targets->height);
+}
+
 // The environment turns by +angle about Y: look up directions turned by -angle.
 glm::mat3 environmentLookup(const RenderSettings& s) {
   return glm::mat3(
@@ -172,7 +178,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uOcclusionDistance", b.occlusionDistance);
   p.set("uView", cm.view);
   p.set("uProjection", cm.projection);
-  p.set("uViewportSize", glm::vec2(b.targets->width, b.targets->height));
+  p.set("uViewportSize", glm::vec2(drawnSize(b)));
   p.set("uSequence", b.sequence);
   b.shadows->bind(p, kUnitShadow);
   b.pointShadows->bind(p, kUnitPointShadow);
@@ -338,11 +344,16 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
 Status LightingPass::draw(const LightingBatch& b) {
   const glm::mat3 envRotation = environmentLookup(*b.settings);
   b.targets->frame.framebuffer.bind();
-  gl::setViewport(0, 0, b.targets->width, b.targets->height);
+  const glm::ivec2 drawn = drawnSize(b);
+  gl::setViewport(0, 0, drawn.x, drawn.y);
   if (b.first) {
     gl::apply({});
+    // A reduced frame clears only its part (unsplit: no band's scissor is on).
+    const bool part = drawn != glm::ivec2(b.targets->width, b.targets->height);
+    if (part) gl::setScissor(0, 0, drawn.x, drawn.y);
     gl::clearBufferFloat(0, 0, 0, 0, 1);
     gl::clearDepth(1.0f);
+    if (part) gl::disableScissor();
   }
   if (!b.scene) {
     if (b.first) drawBackground(b, envRotation);
@@ -475,7 +486,8 @@ Status LightingPass::composeTransmission(const LightingBatch& b) {
   if (!b.scene || b.scene->transmissive().empty() || !b.targets->glassLight.color) return {};
   RenderTargets& t = *b.targets;
   t.frame.framebuffer.bind();
-  gl::setViewport(0, 0, t.width, t.height);
+  const glm::ivec2 drawn = drawnSize(b);
+  gl::setViewport(0, 0, drawn.x, drawn.y);
   LightingBatch compose = b;
   compose.readProbeCache = false;
   const glm::mat3 envRotation = environmentLookup(*b.settings);

@@ -55,6 +55,9 @@ struct PunctualDraw {
 
 struct LightingBatch {
   RenderTargets* targets = nullptr;
+  // The part of the targets drawn, from their bottom-left corner: all of it (0: the targets'
+  // size), or a reduced frame 1 (ProgressiveSettings::previewScale).
+  int drawWidth = 0, drawHeight = 0;
   const GpuScene* scene = nullptr;  // may be null: background only
   const GpuEnvironment* environment = nullptr;
   const ShadowPass* shadows = nullptr;

@@ -80,6 +80,11 @@ Result<FramePart> Renderer::stepPart() {
                             : whole       ? 1
                                           : static_cast<int>(p.units.size())};
 }
+Status Renderer::preview() {
+  gl::StateGuard guard(impl_->options.preserveHostState);
+  impl_->controller.invalidate();
+  return impl_->renderPreview();
+}
 void Renderer::setFrameTiles(int tiles) {
   impl_->frameTiles = std::clamp(tiles, 1, kMaxFrameTiles);
 }

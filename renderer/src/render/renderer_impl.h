@@ -228,6 +228,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
     FramePlan plan;
     CameraMatrices cm;
     int tiles = 1;
+    // The part of the frame target drawn: the whole of it, or a preview's reduced part
+    // (ProgressiveSettings::previewScale).
+    bool preview = false;
+    int drawWidth = 0, drawHeight = 0;
     std::vector<passes::LightingBatch> batches;
     std::vector<std::function<Status()>> units;
     size_t next = 0;
@@ -235,20 +239,26 @@ struct Renderer::Impl : progressive::FrameRenderer {
   PendingFrame pending;
   int frameTiles = 1;
 
-  // Restricts drawing to band t of the pending frame (no-op unsplit). Bands cover the image
-  // bottom-up, rows [t h / k, (t + 1) h / k).
+  // Restricts drawing to band t of the pending frame (no-op unsplit). Bands cover the drawn
+  // part bottom-up, rows [t h / k, (t + 1) h / k).
   void band(int t) const {
     if (pending.tiles <= 1) return;
-    const int h = targets->height, k = pending.tiles;
+    const int h = pending.drawHeight, k = pending.tiles;
     const int y0 = t * h / k, y1 = (t + 1) * h / k;
-    gl::setScissor(0, y0, targets->width, y1 - y0);
+    gl::setScissor(0, y0, pending.drawWidth, y1 - y0);
   }
+
   void endBand() const {
     if (pending.tiles > 1) gl::disableScissor();
   }
-  // Band t of k of the frame's accumulation (frame 1 becomes the mean by a swap instead).
+  // Band t of k of the frame's accumulation (frame 1 becomes the mean by a swap instead; a
+  // preview, drawn whole, stands in for it upsampled).
   void accumulateBand(int t, int k) {
-    if (pending.plan.frame == 1) {
+    if (pending.preview) {
+      accumulate->upsampleFirst(*targets, pending.drawWidth, pending.drawHeight);
+      targets->current = 1 - targets->current;
+      endPass(&stats.accumulateMs);
+    } else if (pending.plan.frame == 1) {
       if (t == k - 1) targets->takeFrameAsMean();  // mean_1 = x_1: no pass needed
     } else {
       accumulate->draw(*targets, pending.plan.frame);
@@ -257,16 +267,25 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
   }
 
-  void beginFrame(const FramePlan& plan, int tiles) {
+  // preview: frame 1 drawn at previewScale as a stand-in for the mean (Renderer::preview).
+  void beginFrame(const FramePlan& plan, int tiles, bool preview = false) {
     pending = {};
     pending.plan = plan;
-    pending.tiles = std::clamp(tiles, 1, std::max(1, std::min(kMaxFrameTiles, targets->height)));
+    pending.preview = preview;
+    pending.drawWidth = targets->width;
+    pending.drawHeight = targets->height;
+    if (preview) {
+      const float scale = settings.progressive.previewScale;
+      pending.drawWidth = std::max(1, static_cast<int>(std::lround(targets->width * scale)));
+      pending.drawHeight = std::max(1, static_cast<int>(std::lround(targets->height * scale)));
+    }
+    pending.tiles = std::clamp(tiles, 1, std::max(1, std::min(kMaxFrameTiles, pending.drawHeight)));
     stats = {};
     stats.frame = plan.frame;
     endPass(nullptr);
     if (plan.frame == 1) targets->current = 0;
     const Camera cam = activeCamera();
-    pending.cm = cameraMatrices(cam, targets->width, targets->height, plan.jitter);
+    pending.cm = cameraMatrices(cam, pending.drawWidth, pending.drawHeight, plan.jitter);
     if (plan.frame == 1) {
       prepassValid = false;
       probeCacheFrame = -1;
@@ -374,6 +393,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
     for (size_t b = 0; b < batches; ++b) {
       pending.batches.push_back(passes::LightingBatch{
           .targets = &*targets,
+          .drawWidth = pending.drawWidth,
+          .drawHeight = pending.drawHeight,
           .scene = scene.get(),
           .environment = environment.get(),
           .shadows = &*shadows,
@@ -536,6 +557,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
     } while (all && pending.next < pending.units.size());
     PN_TRY(gl::checkError("frame " + std::to_string(pending.plan.frame)));
     return pending.next >= pending.units.size();
+  }
+
+  // Frame 1 of the plan as a reduced preview (Renderer::preview); the caller restarted the
+  // controller.
+  Status renderPreview() {
+    if (!targets) return makeError("preview: the renderer has no targets");
+    beginFrame(controller.plan().front(), 1, true);
+    auto done = runPart();
+    if (!done) return done.error();
+    return {};
   }
 
   Status renderFrame(const FramePlan& plan) override {
