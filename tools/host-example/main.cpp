@@ -154,14 +154,17 @@ int main(int argc, char** argv) {
   auto renderer = penumbra::Renderer::create({.preserveHostState = true});
   if (!renderer) return fail(renderer.message());
   if (auto st = job->applyTo(**renderer); !st) return fail(st.message());
+  const penumbra::PresentTarget viewport{
+      .framebuffer = fbo, .x = border, .y = border, .width = w, .height = h};
+  // While its view moves, a host shows previews (frame 1 at a quarter of the pixels); once the
+  // view rests, it steps to convergence (the preview is not part of the image).
+  if (auto st = (*renderer)->preview(); !st) return fail(st.message());
+  if (auto st = (*renderer)->present(viewport); !st) return fail(st.message());
+  if (hostState() != before) return fail("Penumbra's preview changed the host's GL state");
   while (!(*renderer)->converged()) {
     if (auto f = (*renderer)->step(); !f) return fail(f.message());
   }
-  if (auto st = (*renderer)->present(
-          {.framebuffer = fbo, .x = border, .y = border, .width = w, .height = h});
-      !st) {
-    return fail(st.message());
-  }
+  if (auto st = (*renderer)->present(viewport); !st) return fail(st.message());
   if (hostState() != before) return fail("Penumbra changed the host's GL state");
 
   // Read the host's framebuffer (with the host's own state: pack alignment 8 is fine for
