@@ -88,27 +88,27 @@ vec4 fragColor;  // unused here
 out vec4 fragColor;
 #endif
 
-#if PN_OCCLUSION
+#if PN_OCCLUSION && PN_PROBE_CACHE
 // The per-view cache: a still view's probe lookups change only as the volume fills, so they
 // are made every few frames by the PN_PROBE_CACHE_WRITE variant and read back in between. The
 // key (linear view depth over the volume's diagonal) finds the right texel where the frame's
 // jittered sample lands on another surface than the cached one (silhouettes): of the pixel and
 // its four neighbours, the best match. No lookup falls back to the probes: a software
 // rasterizer runs both sides of a branch, so the fallback would cost every pixel.
-uniform sampler2D uProbeCache;
-uniform sampler2D uProbeCacheRoom;
+// Layer 0: irradiance and the +-key; layer 1: the room's radiance and its share.
+uniform highp sampler2DArray uProbeCache;
 
 void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  ivec2 last = textureSize(uProbeCache, 0) - 1;
-  vec4 best = texelFetch(uProbeCache, px, 0);
+  ivec2 last = textureSize(uProbeCache, 0).xy - 1;
+  vec4 best = texelFetch(uProbeCache, ivec3(px, 0), 0);
   ivec2 bestPx = px;
   float bestError = abs(abs(best.a) - key);
   for (int i = 0; i < 4; ++i) {
     ivec2 q = clamp(px + (i == 0 ? ivec2(1, 0) : i == 1 ? ivec2(-1, 0) : i == 2 ? ivec2(0, 1)
                                                                               : ivec2(0, -1)),
                     ivec2(0), last);
-    vec4 c = texelFetch(uProbeCache, q, 0);
+    vec4 c = texelFetch(uProbeCache, ivec3(q, 0), 0);
     float e = abs(abs(c.a) - key);
     if (bestError > tolerance && e < bestError) {
       best = c;
@@ -117,7 +117,7 @@ void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
     }
   }
   pv = vec4(best.rgb, best.a > 0.0 ? 1.0 : 0.0);
-  room = texelFetch(uProbeCacheRoom, bestPx, 0);
+  room = texelFetch(uProbeCache, ivec3(bestPx, 1), 0);
 }
 #endif
 
@@ -381,14 +381,13 @@ void main() {
 #endif
     vec4 room = vec4(0.0);
     vec4 pv = vec4(0.0);
-#if PN_OCCLUSION
-    if (PN_PROBE_CACHE != 0) {
-      probeCacheRead(cacheKey, cacheTolerance, pv, room);
-    } else
-#endif
+#if PN_OCCLUSION && PN_PROBE_CACHE
+    probeCacheRead(cacheKey, cacheTolerance, pv, room);
+#else
     if (PN_PROBES != 0 && (!diffuseHit || glossy)) {
       pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
     }
+#endif
     if (PN_PROBES != 0) {
 #if PN_CAPTURE
       // Captures build on what the volume holds, nothing else: each adds a bounce.

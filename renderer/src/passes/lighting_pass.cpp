@@ -86,7 +86,7 @@ bool LightingPass::readsLightCache(const LightingBatch& b) {
 }
 
 bool LightingPass::readsProbeCache(const LightingBatch& b) {
-  return b.readProbeCache && b.probes && b.targets->probeCache.color;
+  return b.readProbeCache && b.probes && b.targets->probeCache;
 }
 
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
@@ -191,11 +191,10 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     dummy_.bind(kUnitProbeAtlas);
     p.set("uProbeAtlas", kUnitProbeAtlas);
   }
-  const bool readCache = readsProbeCache(b);
-  (readCache ? b.targets->probeCache.color : dummy_).bind(kUnitProbeCache);
-  (readCache ? b.targets->probeCacheRoom : dummy_).bind(kUnitProbeCacheRoom);
-  p.set("uProbeCache", kUnitProbeCache);
-  p.set("uProbeCacheRoom", kUnitProbeCacheRoom);
+  if (readsProbeCache(b)) {  // (declared only by the programs that read it)
+    b.targets->probeCache.bind(kUnitProbeCache);
+    p.set("uProbeCache", kUnitProbeCache);
+  }
 
   // This batch's area-light samples.
   std::vector<glm::vec3> pos, dir, right, up, radiance;
@@ -377,7 +376,7 @@ Status LightingPass::draw(const LightingBatch& b) {
   if (b.writeProbeCache && b.probes) {
     // The volume's lookups for this view, where this frame's depth pass left the surfaces.
     PN_TRY(b.targets->ensureProbeCache());
-    b.targets->probeCache.framebuffer.bind();
+    b.targets->probeCacheFramebuffer.bind();
     gl::apply({.depthWrite = false});  // the depth pass left colour writes off
     gl::clearBufferFloat(0, 0, 0, 0, 0);
     gl::clearBufferFloat(1, 0, 0, 0, 0);

@@ -25,13 +25,14 @@ inline constexpr int kMaxPointShadows = 2;
 // share one unit (a depth texture array).
 inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
                      kUnitShadow = 9, kUnitPointShadow = kUnitShadow + 1;
-// The probe volume's atlas (irradiance, depth moments and radiance in one texture), and the
-// per-view cache of its lookups (passes/lighting_pass.h).
-inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitProbeCacheRoom = 15;
+// The probe volume's atlas (irradiance, depth moments and radiance in one texture), the
+// per-view cache of its lookups (passes/lighting_pass.h; a two-layer array), and this frame's
+// diffuse occlusion rays, traced at a quarter of the pixels (passes/occlusion_pass.h).
+inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitOcclusion = 15;
 // Transmissive surfaces' compose pass: the frame's copy, and their own light (in the cache's
-// units: the compose pass never reads the cache). Unit 12 is the clearcoat's normal map
+// and the rays' units: the compose pass reads neither). Unit 12 is the clearcoat's normal map
 // (gpu/gpu_scene.h).
-inline constexpr int kUnitBehind = kUnitProbeCacheRoom, kUnitGlassLight = kUnitProbeCache;
+inline constexpr int kUnitBehind = kUnitOcclusion, kUnitGlassLight = kUnitProbeCache;
 // The area lights' per-view cache: in the second point shadow's unit (a batch with point-light
 // cube maps evaluates its lights instead).
 inline constexpr int kUnitLightCache = kUnitPointShadow + 1;
@@ -40,7 +41,7 @@ static_assert(kClearcoatNormalUnit == kUnitPointShadow + kMaxPointShadows &&
               "the clearcoat normal map's unit is taken");
 static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeAtlas,
               "the point shadows overlap the probe volume's units");
-static_assert(kUnitProbeCacheRoom < 16, "WebGL2 guarantees 16 texture units");
+static_assert(kUnitOcclusion < 16, "WebGL2 guarantees 16 texture units");
 
 // Probe volume: interior texels of a probe's octahedral irradiance, depth-moment and radiance
 // maps (each tile has a one-texel border), and the face size of a probe's cube capture.

@@ -54,20 +54,21 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
 }
 
 Status RenderTargets::ensureProbeCache() {
-  if (probeCache.color) return {};
-  auto cache = makeColor(width, height, prepassFormat, &frameDepth);
-  if (!cache) return makeError("probe cache target: " + cache.message());
-  auto room = gl::Texture2D::create(
+  if (probeCache) return {};
+  auto cache = gl::Texture2DArray::create(
       {.width = width,
        .height = height,
        .format = prepassFormat,
-       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}});
-  if (!room) return makeError("probe cache target: " + room.message());
-  cache->framebuffer.attachColor(1, *room);
-  cache->framebuffer.setDrawBuffers(2);
-  PN_TRY(cache->framebuffer.checkComplete());
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}},
+      2);
+  if (!cache) return makeError("probe cache target: " + cache.message());
+  gl::Framebuffer fb = gl::Framebuffer::create();
+  for (int i = 0; i < 2; ++i) fb.attachColor(i, *cache, i);
+  fb.attachDepth(frameDepth);
+  fb.setDrawBuffers(2);
+  PN_TRY(fb.checkComplete());
   probeCache = std::move(*cache);
-  probeCacheRoom = std::move(*room);
+  probeCacheFramebuffer = std::move(fb);
   return {};
 }
 

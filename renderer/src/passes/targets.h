@@ -28,12 +28,12 @@ struct RenderTargets {
   ColorTarget prepass;  // view normal + linear depth
   gl::Renderbuffer prepassDepth;
   ColorTarget display;  // RGBA8, display-encoded
-  // The probe volume's per-view cache of its lookups (LightingPass), RGBA16F: irradiance with
-  // a depth key, and the room's radiance (prepassFormat: RGBA16F where renderable) (a second colour
-  // attachment of the same framebuffer). With the frame's depth, so only the pixels the frame
-  // shades are written. Made on first use.
-  ColorTarget probeCache;
-  gl::Texture2D probeCacheRoom;
+  // The probe volume's per-view cache of its lookups (LightingPass), two layers of one array
+  // (prepassFormat: RGBA16F where renderable), drawn at once: irradiance with a depth key, and
+  // the room's radiance. One texture unit for both. With the frame's depth, so only the pixels
+  // the frame shades are written. Made on first use.
+  gl::Texture2DArray probeCache;
+  gl::Framebuffer probeCacheFramebuffer;
   gl::Texture2DArray lightCache;
   gl::Framebuffer lightCacheFramebuffer;
 
