@@ -88,6 +88,14 @@ vec4 fragColor;  // unused here
 out vec4 fragColor;
 #endif
 
+#if PN_OCCLUSION
+// This frame's diffuse occlusion rays, traced at a quarter of the pixels (occlusion_trace.frag):
+// rgb the radiance a blocked ray found, alpha the traced pixel's linear depth (positive:
+// blocked, negative: not, 0: background).
+uniform sampler2D uOcclusion;
+uniform int uOcclusionBlock;  // pixels a side of the blocks that trace one ray: 2, or 1
+#endif
+
 #if PN_OCCLUSION && PN_PROBE_CACHE
 // The per-view cache: a still view's probe lookups change only as the volume fills, so they
 // are made every few frames by the PN_PROBE_CACHE_WRITE variant and read back in between. The
@@ -196,6 +204,10 @@ void main() {
   // y: the key changes by at most fwidth, plus half-float rounding.
   float cacheKey = probeCacheKey();
   float cacheTolerance = 2.0 * fwidth(cacheKey) + 2e-3 * cacheKey;
+  // The same for the occlusion ray of this pixel's 2x2 block, traced up to a pixel away in x
+  // and y (plus the jitter) on the prepass's half floats.
+  float viewDepth = -(uView * vec4(vWorldPos, 1.0)).z;
+  float rayTolerance = 2.0 * fwidth(viewDepth) + 2e-3 * viewDepth;
 #endif
 #if PN_PROBE_CACHE_WRITE
   cacheIrradiance = vec4(0.0);
@@ -339,11 +351,23 @@ void main() {
       mat3 frame = tangentFrame(n);
       vec2 pixel = gl_FragCoord.xy;
       vec3 hit;
-      // Diffuse: one cosine-weighted direction. E/pi is the unoccluded estimate of the
-      // cosine-weighted radiance; a blocked direction contributes the hit's radiance instead.
-      vec3 dDir = frame * sampleCosineHemisphere(pixelSample(pixel, 0.0));
-      if (traceOcclusion(vWorldPos, dDir, fract(uSequence.x * 7.0 + hash2(pixel, 5u).x), hit)) {
-        irradiance = hit * PI;
+      // Diffuse: one cosine-weighted direction, the ray of a 2x2 block (traced by one of its
+      // pixels, a different one each frame), used where the traced pixel lies on this
+      // surface. The block is one of those within a pixel of this one, chosen at random once
+      // per pixel: its own block alone showed the early frames' noise, and a ray's firefly, as
+      // 2x2 squares; another one each frame mixed the blocks' sequences, and the image
+      // converged like white noise. Where the traced pixel lies on another surface, the own
+      // block's ray is taken if its pixel does not; failing both (a silhouette) the
+      // unoccluded estimate stands. E/pi is the unoccluded estimate of the cosine-weighted
+      // radiance; a blocked direction contributes the hit's radiance instead.
+      ivec2 own = ivec2(gl_FragCoord.xy) / uOcclusionBlock;
+      ivec2 offset = (ivec2(floor(hash2(pixel, 8u) * 3.0)) - 1) * (uOcclusionBlock - 1);
+      ivec2 pick = (ivec2(gl_FragCoord.xy) + offset) / uOcclusionBlock;
+      vec4 ray = texelFetch(uOcclusion, clamp(pick, ivec2(0), textureSize(uOcclusion, 0) - 1), 0);
+      vec4 ownRay = texelFetch(uOcclusion, own, 0);
+      if (abs(abs(ray.a) - viewDepth) >= rayTolerance) ray = ownRay;
+      if (ray.a > 0.0 && abs(ray.a - viewDepth) < rayTolerance) {
+        irradiance = ray.rgb * PI;
         skyLossWeight = 0.0;
         diffuseHit = true;
       }

@@ -179,10 +179,12 @@ TEST_F(FrameSplitGLTest, AFrameInProgressShowsThePreviousMeanAndARestartDropsIt)
   auto f = r->step();
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(*f, 3);
-  // Its parts: one per shadow map, 4 bands of each pass over the image, one per probe capture.
+  // Its parts: one per shadow map, 4 bands of each pass over the image, one for the occlusion
+  // rays (a quarter-resolution pass, whole), one per probe capture.
   const FrameStats& st = r->lastFrame();
   EXPECT_GT(st.probeCaptures, 0);
-  EXPECT_EQ(parts, st.shadowPasses + 4 * (st.prepass ? 2 : 1) + st.probeCaptures);
+  EXPECT_TRUE(st.occlusion);
+  EXPECT_EQ(parts, st.shadowPasses + 4 * (st.prepass ? 2 : 1) + 1 + st.probeCaptures);
   auto whole = makeRenderer(j);
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(whole->step().ok());
   EXPECT_LE(maxDifference(*r->readRadiance(), *whole->readRadiance()), 1e-6f);

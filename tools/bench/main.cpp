@@ -41,6 +41,7 @@ struct Row {
   // With --breakdown: milliseconds summed over frames 1..m, per pass, and frame 1's display.
   double readBackMs = 0;
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0, firstDisplayMs = 0;
+  double occlusionMs = 0;
   double firstLightingMs = 0, firstAccumulateMs = 0;
   double probeMs = 0;
   int probeCaptures = 0;
@@ -51,7 +52,8 @@ struct Row {
 
 // Settings given with --set KEY=VALUE, applied to every run (A/B of one setting).
 std::vector<std::pair<std::string, std::string>> gExtraSettings;
-bool gLightCache = true;  // --no-light-cache turns it off
+bool gLightCache = true;        // --no-light-cache turns it off
+bool gQuarterOcclusion = true;  // --full-occlusion turns it off
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
                 bool probeCache, bool probeVolume = true) {
@@ -65,8 +67,10 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   auto job = RenderJob::load(request);
   if (!job) return job.error();
   const Scene* scene = &job->scene;
-  auto r = Renderer::create(
-      {.profilePasses = breakdown, .probeCache = probeCache, .lightCache = gLightCache});
+  auto r = Renderer::create({.profilePasses = breakdown,
+                             .probeCache = probeCache,
+                             .lightCache = gLightCache,
+                             .quarterOcclusion = gQuarterOcclusion});
   if (!r) return r.error();
   PN_TRY(job->applyTo(**r));
   // Warm-up: one full run compiles every program and touches every target.
@@ -98,6 +102,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   row.previewMs = previews[kPreviews / 2];
   auto add = [&row](const FrameStats& f) {
     row.prepassMs += f.prepassMs;
+    row.occlusionMs += f.occlusionMs;
     row.shadowMs += f.shadowMs;
     row.lightingMs += f.lightingMs;
     row.accumulateMs += f.accumulateMs;
@@ -203,10 +208,14 @@ int main(int argc, char** argv) {
   bool noLightCache = false;
   app.add_flag("--no-light-cache", noLightCache,
                "evaluate the area lights every frame (A/B against their per-view cache)");
+  bool fullOcclusion = false;
+  app.add_flag("--full-occlusion", fullOcclusion,
+               "trace a diffuse occlusion ray per pixel (A/B against a ray per 2x2 block)");
   std::vector<std::string> extra;
   app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
   gLightCache = !noLightCache;
+  gQuarterOcclusion = !fullOcclusion;
   for (const auto& kv : extra) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) {
@@ -243,12 +252,13 @@ int main(int argc, char** argv) {
       if (breakdown) {
         const double n = frames;
         std::printf(
-            "|   per frame (ms): prepass %.1f, shadow maps %.1f (%d passes), lighting %.1f (%d "
+            "|   per frame (ms): prepass %.1f, occlusion rays %.1f, shadow maps %.1f (%d passes), "
+            "lighting %.1f (%d "
             "passes), accumulate %.1f, probe volume %.1f (%d captures); frame 1: lighting %.1f, "
             "accumulate %.1f, tone map %.1f | | | | | | | | |\n",
-            row->prepassMs / n, row->shadowMs / n, row->shadowPasses, row->lightingMs / n,
-            row->lightingPasses, row->accumulateMs / n, row->probeMs / n, row->probeCaptures,
-            row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
+            row->prepassMs / n, row->occlusionMs / n, row->shadowMs / n, row->shadowPasses,
+            row->lightingMs / n, row->lightingPasses, row->accumulateMs / n, row->probeMs / n,
+            row->probeCaptures, row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs);
       }
       if (row->probes.probes > 0) {
         std::printf(

@@ -35,6 +35,9 @@ struct RendererOptions {
   // jittered frames); later frames only test each light sample's shadow map (off: every frame
   // evaluates the lights; for A/B runs and tests).
   bool lightCache = true;
+  // Diffuse occlusion rays at a quarter of the pixels, each 2x2 block tracing one (off: every
+  // pixel traces its own; for A/B runs and tests).
+  bool quarterOcclusion = true;
 };
 
 // Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob
@@ -69,6 +72,7 @@ struct FrameStats {
   bool occlusion = false;
   // Milliseconds per pass, filled only with RendererOptions::profilePasses.
   double prepassMs = 0, shadowMs = 0, lightingMs = 0, accumulateMs = 0;
+  double occlusionMs = 0;          // the diffuse occlusion rays (a quarter-resolution pass)
   int probeCaptures = 0;           // probes of the probe volume captured in this frame
   double probeMs = 0;              // their time (with profilePasses)
   bool probeCacheWritten = false;  // the per-view cache of the volume's lookups was remade

@@ -172,6 +172,10 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uIndirectClamp",
         s.progressive.indirectClamp > 0.0f ? s.progressive.indirectClamp : 3.0e38f);
   (b.occlusion ? b.targets->prepass.color : dummy_).bind(kUnitPrepass);
+  (b.occlusion && b.targets->occlusion.color ? b.targets->occlusion.color : dummy_)
+      .bind(kUnitOcclusion);
+  p.set("uOcclusion", kUnitOcclusion);
+  p.set("uOcclusionBlock", std::max(b.targets->occlusionBlock, 1));
   b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
   p.set("uPrepass", kUnitPrepass);
   p.set("uAccumulated", kUnitAccumulated);

@@ -102,4 +102,13 @@ Status RenderTargets::ensureTransmission() {
   return {};
 }
 
+Status RenderTargets::ensureOcclusion(int block) {
+  if (occlusion.color && occlusionBlock == block) return {};
+  auto t = makeColor(occlusionWidth(block), occlusionHeight(block), prepassFormat, nullptr);
+  if (!t) return makeError("occlusion target: " + t.message());
+  occlusion = std::move(*t);
+  occlusionBlock = block;
+  return {};
+}
+
 }  // namespace penumbra::passes

@@ -37,6 +37,13 @@ struct RenderTargets {
   gl::Texture2DArray lightCache;
   gl::Framebuffer lightCacheFramebuffer;
 
+  // This frame's diffuse occlusion rays (OcclusionPass), a ray per block of block x block
+  // pixels: ceil(width / block) x ceil(height / block), prepassFormat. Made on first use.
+  ColorTarget occlusion;
+  int occlusionBlock = 0;
+  int occlusionWidth(int block) const { return (width + block - 1) / block; }
+  int occlusionHeight(int block) const { return (height + block - 1) / block; }
+
   // Transmissive surfaces (LightingPass): their own light, with the frame's depth, and the
   // copy of the frame they look through. Accumulation format; made on first use.
   ColorTarget glassLight;
@@ -52,6 +59,7 @@ struct RenderTargets {
   // a light, all drawn at once over the frame's depth. Remade when the count changes.
   Status ensureLightCache(int layers);
   Status ensureTransmission();
+  Status ensureOcclusion(int block);
 
   void takeFrameAsMean() {
     std::swap(frame, accumulation[static_cast<size_t>(1 - current)]);

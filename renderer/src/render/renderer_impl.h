@@ -23,6 +23,7 @@
 #include "passes/fullscreen_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/limits.h"
+#include "passes/occlusion_pass.h"
 #include "passes/prepass.h"
 #include "passes/probe_volume.h"
 #include "passes/shadow_pass.h"
@@ -54,6 +55,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::Prepass> prepass;
   std::optional<passes::LightingPass> lighting;
   std::optional<passes::AccumulatePass> accumulate;
+  std::optional<passes::OcclusionPass> occlusionPass;
   std::optional<passes::FullscreenPass> tonemap;
   std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
   Bounds probeBox;                            // the scene file's, else the scene's bounds
@@ -112,6 +114,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     auto acc = passes::AccumulatePass::create(library);
     if (!acc) return acc.error();
     accumulate.emplace(std::move(*acc));
+    auto occ = passes::OcclusionPass::create(library);
+    if (!occ) return occ.error();
+    occlusionPass.emplace(std::move(*occ));
     auto tm = passes::FullscreenPass::create(library, "tonemap.frag");
     if (!tm) return tm.error();
     tonemap.emplace(std::move(*tm));
@@ -318,6 +323,28 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     const bool occlusion = plan.occlusion && (drawPrepass || prepassValid);
     stats.occlusion = occlusion;
+    const float occlusionDistance = effectiveOcclusionDistance(
+        settings.progressive,
+        scene && scene->bounds().valid() ? 2.0f * scene->bounds().radius() : 0.0f);
+    if (occlusion) {
+      // This frame's diffuse occlusion rays, at a quarter of the pixels, once the prepass is
+      // complete: one unit for the whole image (it is small), before any lighting band.
+      const CameraMatrices still = cameraMatrices(cam, targets->width, targets->height, {0, 0});
+      units.push_back([this, still, occlusionDistance]() -> Status {
+        const ProgressiveSettings& ps = settings.progressive;
+        PN_TRY(occlusionPass->trace({.targets = &*targets,
+                                     .view = still.view,
+                                     .projection = still.projection,
+                                     .sequence = pending.plan.sequence,
+                                     .frame = pending.plan.frame,
+                                     .block = options.quarterOcclusion ? 2 : 1,
+                                     .occlusionDistance = occlusionDistance,
+                                     .indirect = ps.screenSpaceIndirect,
+                                     .indirectClamp = ps.indirectClamp}));
+        endPass(&stats.occlusionMs);
+        return {};
+      });
+    }
     // The probe volume's per-view cache, read in between remakes (progressive::remakeProbeCache:
     // ever more rarely as the volume converges).
     const bool probeCache = occlusion && probesOn() && options.probeCache;
@@ -402,9 +429,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .settings = &settings,
           .camera = &pending.cm,
           .sequence = plan.sequence,
-          .occlusionDistance = effectiveOcclusionDistance(
-              settings.progressive,
-              scene && scene->bounds().valid() ? 2.0f * scene->bounds().radius() : 0.0f),
+          .occlusionDistance = occlusionDistance,
           .first = b == 0,
           // Occlusion only in the first batch: later ones add light.
           .occlusion = b == 0 && occlusion,

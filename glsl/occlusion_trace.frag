@@ -1,0 +1,43 @@
+// This frame's diffuse occlusion rays at a quarter of the pixels (passes/occlusion_pass.h):
+// texel (i, j) traces the ray of pixel b (i, j) + uBlockOffset of the full image (block size
+// b = uBlock: 2, or 1 where every pixel traces its own), from the
+// prepass's position and normal, with the cosine-weighted direction and march jitter that
+// pixel's sequence gives. Output: the radiance found (screen-space indirect light), and in
+// alpha the pixel's linear depth, positive where the ray was blocked, negative where it was
+// not (0: background), so the lighting pass can tell whether the ray left its own surface.
+#include "chunks/sampling.glsl"
+#include "chunks/occlusion.glsl"
+uniform mat4 uInvView;
+uniform mat4 uInvProjection;  // unjittered, as the prepass
+uniform int uBlock;           // 2: a ray per 2x2 block, 1: per pixel
+uniform vec2 uBlockOffset;    // which pixel of each block traces this frame
+out vec4 fragColor;
+void main() {
+  ivec2 size = ivec2(uViewportSize);
+  ivec2 px = min(ivec2(gl_FragCoord.xy) * uBlock + ivec2(uBlockOffset), size - 1);
+  vec4 g = texelFetch(uPrepass, px, 0);
+  if (g.w <= 0.0) {
+    fragColor = vec4(0.0);
+    return;
+  }
+  // The view-space point at that depth on the pixel centre's ray, through two of its points
+  // (the near plane and NDC depth 0: finite with an infinite far plane too), so perspective
+  // and orthographic alike.
+  vec2 pixel = vec2(px) + 0.5;
+  vec2 ndc = pixel / uViewportSize * 2.0 - 1.0;
+  vec4 a = uInvProjection * vec4(ndc, -1.0, 1.0);
+  vec4 b = uInvProjection * vec4(ndc, 0.0, 1.0);
+  a.xyz /= a.w;
+  b.xyz /= b.w;
+  vec3 viewPos = mix(a.xyz, b.xyz, (-g.w - a.z) / (b.z - a.z));
+  vec3 p = (uInvView * vec4(viewPos, 1.0)).xyz;
+  vec3 n = normalize(mat3(uInvView) * g.xyz);
+  // The block's own sample sequence (its texel here): each pixel takes its rays from one block
+  // (lighting.frag), so over the frames its directions are the block's low-discrepancy
+  // sequence, as stratified as a pixel's own would be.
+  vec2 block = gl_FragCoord.xy;
+  vec3 dir = tangentFrame(n) * sampleCosineHemisphere(pixelSample(block, 0.0));
+  vec3 hit;
+  bool blocked = traceOcclusion(p, dir, fract(uSequence.x * 7.0 + hash2(block, 5u).x), hit);
+  fragColor = vec4(hit, blocked ? g.w : -g.w);
+}

@@ -1,0 +1,48 @@
+#include "passes/occlusion_pass.h"
+
+#include <array>
+
+#include "passes/limits.h"
+
+namespace penumbra::passes {
+
+Result<OcclusionPass> OcclusionPass::create(gl::ShaderLibrary& library) {
+  auto pass = FullscreenPass::create(library, "occlusion_trace.frag");
+  if (!pass) return pass.error();
+  return OcclusionPass(std::move(*pass));
+}
+
+glm::ivec2 OcclusionPass::blockOffset(int frame) {
+  // Diagonal pairs first: two frames already sample both rows and columns.
+  static constexpr std::array<glm::ivec2, 4> kOrder = {glm::ivec2(0, 0), glm::ivec2(1, 1),
+                                                       glm::ivec2(1, 0), glm::ivec2(0, 1)};
+  return kOrder[static_cast<size_t>(((frame % 4) + 4) % 4)];
+}
+
+Status OcclusionPass::trace(const OcclusionInputs& in) const {
+  RenderTargets& t = *in.targets;
+  PN_CHECK(in.block == 1 || in.block == 2, "OcclusionPass: blocks of 1 or 2 pixels");
+  PN_TRY(t.ensureOcclusion(in.block));
+  t.occlusion.framebuffer.bind();
+  gl::setViewport(0, 0, t.occlusionWidth(in.block), t.occlusionHeight(in.block));
+  const gl::Program& p = pass_.begin();
+  t.prepass.color.bind(kUnitPrepass);
+  t.accumulation[static_cast<size_t>(t.current)].color.bind(kUnitAccumulated);
+  p.set("uPrepass", kUnitPrepass);
+  p.set("uAccumulated", kUnitAccumulated);
+  p.set("uIndirectEnabled", in.indirect ? 1 : 0);
+  p.set("uIndirectClamp", in.indirectClamp > 0.0f ? in.indirectClamp : 3.0e38f);
+  p.set("uOcclusionDistance", in.occlusionDistance);
+  p.set("uView", in.view);
+  p.set("uProjection", in.projection);
+  p.set("uInvView", glm::inverse(in.view));
+  p.set("uInvProjection", glm::inverse(in.projection));
+  p.set("uViewportSize", glm::vec2(t.width, t.height));
+  p.set("uSequence", in.sequence);
+  p.set("uBlock", in.block);
+  p.set("uBlockOffset", in.block == 2 ? glm::vec2(blockOffset(in.frame)) : glm::vec2(0.0f));
+  pass_.draw();
+  return {};
+}
+
+}  // namespace penumbra::passes
