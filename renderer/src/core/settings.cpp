@@ -88,8 +88,9 @@ const SettingInfo kSchema[] = {
      true, "intermediate frames m", PN_FIELD(progressive.frames, int)},
     {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
      "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
+    // Not the web viewer's: it lowers its own resolution while the camera moves.
     {"previewScale", "progressive", "previewScale", "--preview-scale", SettingType::Float, 0.25, 1,
-     false, false, false, true,
+     false, false, false, false,
      "resolution scale of the preview shown while the view moves (frame 1, upsampled)",
      PN_FIELD(progressive.previewScale, float)},
     {"occlusionDistance", "progressive", "occlusionDistance", "--occlusion-distance",
