@@ -204,8 +204,8 @@ void main() {
   // y: the key changes by at most fwidth, plus half-float rounding.
   float cacheKey = probeCacheKey();
   float cacheTolerance = 2.0 * fwidth(cacheKey) + 2e-3 * cacheKey;
-  // The same for the occlusion ray of this pixel's 2x2 block, traced up to a pixel away in x
-  // and y (plus the jitter) on the prepass's half floats.
+  // The same for the occlusion ray taken from a nearby 2x2 block (occlusion_trace.frag),
+  // traced up to two pixels away in x and y (plus the jitter) on the prepass's half floats.
   float viewDepth = -(uView * vec4(vWorldPos, 1.0)).z;
   float rayTolerance = 2.0 * fwidth(viewDepth) + 2e-3 * viewDepth;
 #endif
@@ -348,9 +348,7 @@ void main() {
     bool diffuseHit = false, specularHit = false;
 #if PN_OCCLUSION
     {
-      mat3 frame = tangentFrame(n);
       vec2 pixel = gl_FragCoord.xy;
-      vec3 hit;
       // Diffuse: one cosine-weighted direction, the ray of a 2x2 block (traced by one of its
       // pixels, a different one each frame), used where the traced pixel lies on this
       // surface. The block is one of those within a pixel of this one, chosen at random once
@@ -379,8 +377,9 @@ void main() {
         specularHit = true;
       }
 #else
-      // Specular: one GGX half vector, reflected.
-      vec3 h = frame * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
+      // Specular: one GGX half vector, reflected, marched here.
+      vec3 hit;
+      vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
       vec3 sDir = reflect(-v, h);
       if (dot(sDir, n) > 0.0 &&
           traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {

@@ -91,7 +91,8 @@ const SettingInfo kSchema[] = {
     // Not the web viewer's: it lowers its own resolution while the camera moves.
     {"previewScale", "progressive", "previewScale", "--preview-scale", SettingType::Float, 0.25, 1,
      false, false, false, false,
-     "resolution scale of the preview shown while the view moves (frame 1, upsampled)",
+     "resolution scale of Renderer::preview, the image a host shows while its view moves "
+     "(frame 1, upsampled; the command-line tools never show one)",
      PN_FIELD(progressive.previewScale, float)},
     {"occlusionDistance", "progressive", "occlusionDistance", "--occlusion-distance",
      SettingType::Float, 0, 1e9, false, false, false, true,

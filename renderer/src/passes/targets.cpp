@@ -1,5 +1,7 @@
 #include "passes/targets.h"
 
+#include <string>
+
 namespace penumbra::passes {
 namespace {
 
@@ -16,6 +18,27 @@ Result<ColorTarget> makeColor(int w, int h, gl::PixelFormat format, const gl::Re
   t.framebuffer.setDrawBuffers(1);
   PN_TRY(t.framebuffer.checkComplete());
   return t;
+}
+
+// A half-float array of `layers` layers and a framebuffer drawing all of them at once over
+// `depth` (the per-view caches).
+Status makeLayers(int w, int h, gl::PixelFormat format, int layers, const gl::Renderbuffer& depth,
+                  const char* what, gl::Texture2DArray& texture, gl::Framebuffer& framebuffer) {
+  auto array = gl::Texture2DArray::create(
+      {.width = w,
+       .height = h,
+       .format = format,
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}},
+      layers);
+  if (!array) return makeError(std::string(what) + " target: " + array.message());
+  gl::Framebuffer fb = gl::Framebuffer::create();
+  for (int i = 0; i < layers; ++i) fb.attachColor(i, *array, i);
+  fb.attachDepth(depth);
+  fb.setDrawBuffers(layers);
+  PN_TRY(fb.checkComplete());
+  texture = std::move(*array);
+  framebuffer = std::move(fb);
+  return {};
 }
 
 }  // namespace
@@ -55,40 +78,14 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
 
 Status RenderTargets::ensureProbeCache() {
   if (probeCache) return {};
-  auto cache = gl::Texture2DArray::create(
-      {.width = width,
-       .height = height,
-       .format = prepassFormat,
-       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}},
-      2);
-  if (!cache) return makeError("probe cache target: " + cache.message());
-  gl::Framebuffer fb = gl::Framebuffer::create();
-  for (int i = 0; i < 2; ++i) fb.attachColor(i, *cache, i);
-  fb.attachDepth(frameDepth);
-  fb.setDrawBuffers(2);
-  PN_TRY(fb.checkComplete());
-  probeCache = std::move(*cache);
-  probeCacheFramebuffer = std::move(fb);
-  return {};
+  return makeLayers(width, height, prepassFormat, 2, frameDepth, "probe cache", probeCache,
+                    probeCacheFramebuffer);
 }
 
 Status RenderTargets::ensureLightCache(int layers) {
   if (lightCache && lightCache.layers() == layers) return {};
-  auto cache = gl::Texture2DArray::create(
-      {.width = width,
-       .height = height,
-       .format = prepassFormat,
-       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}},
-      layers);
-  if (!cache) return makeError("light cache target: " + cache.message());
-  gl::Framebuffer fb = gl::Framebuffer::create();
-  for (int i = 0; i < layers; ++i) fb.attachColor(i, *cache, i);
-  fb.attachDepth(frameDepth);
-  fb.setDrawBuffers(layers);
-  PN_TRY(fb.checkComplete());
-  lightCache = std::move(*cache);
-  lightCacheFramebuffer = std::move(fb);
-  return {};
+  return makeLayers(width, height, prepassFormat, layers, frameDepth, "light cache", lightCache,
+                    lightCacheFramebuffer);
 }
 
 Status RenderTargets::ensureTransmission() {

@@ -303,8 +303,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const bool coverageChanges = scene && !scene->blended().empty();
     const bool drawPrepass =
         plan.occlusion && (plan.renderPrepass || !prepassValid || coverageChanges);
+    // The prepass's and the occlusion rays' camera: unjittered.
+    const CameraMatrices still = cameraMatrices(cam, targets->width, targets->height, {0, 0});
     if (drawPrepass) {
-      const CameraMatrices still = cameraMatrices(cam, targets->width, targets->height, {0, 0});
       for (int t = 0; t < k; ++t) {
         units.push_back([this, still, t, k]() -> Status {
           if (t == 0) prepassValid = false;  // until its last band is drawn
@@ -329,7 +330,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     if (occlusion) {
       // This frame's diffuse occlusion rays, at a quarter of the pixels, once the prepass is
       // complete: one unit for the whole image (it is small), before any lighting band.
-      const CameraMatrices still = cameraMatrices(cam, targets->width, targets->height, {0, 0});
       units.push_back([this, still, occlusionDistance]() -> Status {
         const ProgressiveSettings& ps = settings.progressive;
         PN_TRY(occlusionPass->trace({.targets = &*targets,
