@@ -46,8 +46,9 @@ uniform float uEnvWeight;  // weight of the environment term in this frame (0 or
 // light); 0 on an area light's visible face, whose light the analytic area light already gives.
 uniform float uIndirectEmission;
 
-uniform int uAreaCount;
-uniform int uAreaLight[MAX_AREA];        // light index of each sample (sorted)
+// The batch's samples: PN_AREA_COUNT area-light samples, sorted by light (bit i of
+// PN_AREA_STARTS: sample i's light is not sample i - 1's), and PN_PUNCTUAL_COUNT punctual ones.
+// Loops over them run to these constants and unroll, so arrays are read at constant indices.
 uniform vec3 uAreaPos[MAX_AREA];
 uniform vec3 uAreaDir[MAX_AREA];
 uniform vec3 uAreaRight[MAX_AREA];
@@ -55,7 +56,6 @@ uniform vec3 uAreaUp[MAX_AREA];
 uniform vec4 uAreaShape[MAX_AREA];     // width, height, 1 = disk, shadow map index (-1 none)
 uniform vec3 uAreaRadiance[MAX_AREA];  // colour * luminance * sample weight
 
-uniform int uPunctualCount;
 uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 directional
 uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
 uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
@@ -447,15 +447,14 @@ void main() {
   // its samples, so it is computed once (or read from the per-view cache) and only the
   // shadow-map visibility differs.
   vec3 shaded = vec3(0.0);
-  for (int i = 0; i < MAX_AREA; ++i) {
-    if (i >= uAreaCount) break;
+  for (int i = 0; i < PN_AREA_COUNT; ++i) {
 #if PN_LIGHT_CACHE
     // The mean over the positions that saw a surface: at a silhouette against the sky the
     // others added nothing, and this sample is on the surface.
     vec4 cached = texelFetch(uLightCache, ivec3(ivec2(gl_FragCoord.xy), uAreaLayer[i]), 0);
     shaded = cached.rgb / max(cached.a, 1e-3);
 #else
-    if (i == 0 || uAreaLight[i] != uAreaLight[i - 1]) {
+    if ((PN_AREA_STARTS & (1 << i)) != 0) {
       shaded = areaShading(areaLightOf(i), n, v, f0, f90, alpha, diffuseColor, baseScale,
                            sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha);
     }
@@ -468,8 +467,7 @@ void main() {
   // Punctual lights (KHR_lights_punctual): spot and directional samples with a shadow map each
   // (directional ones from a direction jittered over the light's angular size), point lights
   // unshadowed.
-  for (int i = 0; i < MAX_PUNCTUAL; ++i) {
-    if (i >= uPunctualCount) break;
+  for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
     vec3 l;
     float attenuation = 1.0;
     int type = int(uPunctualPos[i].w);

@@ -89,6 +89,24 @@ bool LightingPass::readsProbeCache(const LightingBatch& b) {
   return b.readProbeCache && b.probes && b.targets->probeCache;
 }
 
+uint32_t LightingPass::sampleBits(const LightingBatch& b, bool area, bool punctual) {
+  static_assert(kMaxShadowMaps < 8 && kMaxPunctualLights < 16, "counts overflow their bits");
+  uint32_t bits = 0;
+  if (area) {
+    const size_t n = std::min(b.area.size(), static_cast<size_t>(kMaxShadowMaps));
+    uint32_t starts = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (i == 0 || b.area[i].lightIndex != b.area[i - 1].lightIndex) starts |= 1u << i;
+    }
+    bits |= static_cast<uint32_t>(n) << kAreaCountShift | starts << kAreaStartsShift;
+  }
+  if (punctual) {
+    const size_t n = std::min(b.punctual.size(), static_cast<size_t>(kMaxPunctualLights));
+    bits |= static_cast<uint32_t>(n) << kPunctualCountShift;
+  }
+  return bits;
+}
+
 uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
   const bool probes = b.probes && b.probes->active();
   const bool cache = readsProbeCache(b);
@@ -98,7 +116,7 @@ uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool are
   return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
          (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u) | (cubeMaps ? kPointShadows : 0u) |
          (punctual ? punctualKinds(b) << kKindsShift : 0u) |
-         (area && readsLightCache(b) ? kLightCacheRead : 0u);
+         (area && readsLightCache(b) ? kLightCacheRead : 0u) | sampleBits(b, area, punctual);
 }
 
 Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
@@ -119,6 +137,9 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
       {"PN_LIGHT_CACHE_WRITE", std::to_string((pass >> kCachedLightsShift) & 7u)},
       {"PN_LIGHT_CACHE", flag(kLightCacheRead)},
       {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & 31u)},
+      {"PN_AREA_COUNT", std::to_string((pass >> kAreaCountShift) & 7u)},
+      {"PN_AREA_STARTS", std::to_string((pass >> kAreaStartsShift) & 15u)},
+      {"PN_PUNCTUAL_COUNT", std::to_string((pass >> kPunctualCountShift) & 15u)},
       {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
                           : (pass & kTransmitOwn)   ? "1"
                                                     : "0"}};
@@ -203,7 +224,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   // This batch's area-light samples.
   std::vector<glm::vec3> pos, dir, right, up, radiance;
   std::vector<glm::vec4> shape;
-  std::vector<int> lightIds;
   std::vector<glm::mat4> shadowMatrices(kMaxShadowMaps, glm::mat4(1.0f));
   std::vector<glm::vec4> shadowParams(kMaxShadowMaps, glm::vec4(0.0f));
   for (const PunctualDraw& pd : b.punctual) {
@@ -214,7 +234,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   for (size_t i = 0; i < b.area.size(); ++i) {
     const AreaSampleDraw& a = b.area[i];
     const Light& l = *a.light;
-    lightIds.push_back(a.lightIndex);
     pos.push_back(l.position);
     dir.push_back(l.direction);
     right.push_back(l.right);
@@ -227,8 +246,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
       shadowParams[i] = a.view.params;
     }
   }
-  p.set("uAreaCount", static_cast<int>(b.area.size()));
-  p.set("uAreaLight", std::span<const int>(lightIds));
   p.set("uAreaPos", std::span<const glm::vec3>(pos));
   p.set("uAreaDir", std::span<const glm::vec3>(dir));
   p.set("uAreaRight", std::span<const glm::vec3>(right));
@@ -274,7 +291,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     // A negative cone scale marks a sky-shadow sample (directional lights have no cone).
     cone.push_back(pd.skyLoss ? glm::vec2(-1.0f, 0.0f) : glm::vec2(scale, -cosOuter * scale));
   }
-  p.set("uPunctualCount", static_cast<int>(ppos.size()));
   p.set("uPunctualPos", std::span<const glm::vec4>(ppos));
   p.set("uPunctualDir", std::span<const glm::vec4>(pdir));
   p.set("uPunctualColor", std::span<const glm::vec3>(pcol));

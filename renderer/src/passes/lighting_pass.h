@@ -131,6 +131,9 @@ class LightingPass {
     kKindsShift = 10,            // PN_PUNCTUAL_KINDS (punctualKinds) from this bit on
     kLightCacheRead = 1u << 16,  // PN_LIGHT_CACHE: area-light samples read the lights' cache
     kCachedLightsShift = 17,     // PN_LIGHT_CACHE_WRITE: lights written to it (0: none)
+    kAreaCountShift = 20,        // PN_AREA_COUNT: the batch's area-light samples (3 bits)
+    kAreaStartsShift = 23,       // PN_AREA_STARTS: samples whose light differs from the last's
+    kPunctualCountShift = 27,    // PN_PUNCTUAL_COUNT: the batch's punctual samples (4 bits)
   };
   // The cache layer of scene light `lightIndex` in batch b (-1: not cached).
   static int lightCacheLayer(const LightingBatch& b, int lightIndex);
@@ -139,6 +142,11 @@ class LightingPass {
   // The kinds of punctual samples in a batch: 1 point, 2 spot, 4 directional with a disk,
   // 8 directional without, 16 sky-shadow samples. Only their code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);
+  // The batch's sample counts, and where its area samples' light changes, as pass bits: the
+  // shader's loops over samples then run to a constant and unroll, so every uniform array is
+  // read at a constant index (llvmpipe reads one at a loop counter lane by lane). A plan has a
+  // few counts per batch, so a few more programs.
+  static uint32_t sampleBits(const LightingBatch& b, bool area, bool punctual);
   // The bits of batch b's own probe state and the given terms.
   static uint32_t passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual);
   Result<gl::Program*> program(uint32_t pass, uint32_t features);
