@@ -15,6 +15,8 @@
 //   PN_PROBES     the probe volume is on; PN_PROBE_CACHE: its per-view cache is read
 //   PN_TRANSMISSION  1: a transmissive surface's own light (its diffuse base scaled by
 //                 1 - transmission); 2: composes that light with what it transmits
+//   PN_ACCUMULATE  the frame's only batch adds its sample straight to the running mean
+//                 (chunks/accumulate.glsl), drawn into the other accumulation target
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
@@ -34,6 +36,10 @@
 #endif
 #if PN_TRANSMISSION == 2
 #include "chunks/transmission.glsl"
+#endif
+#if PN_ACCUMULATE
+#include "chunks/accumulate.glsl"
+uniform sampler2D uPrevious;  // the mean so far (the same texture as uAccumulated)
 #endif
 
 // Limits shared with the C++ side (passes/limits.h), given as generated defines.
@@ -197,7 +203,8 @@ vec3 punctualLobe(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 
 }
 #endif
 
-void main() {
+// The frame's sample at this pixel into fragColor.
+void shade() {
   vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
 #if PN_OCCLUSION
   // Derivatives before any early return. A jitter moves the sample by under a pixel in x and
@@ -548,4 +555,11 @@ void main() {
                                                                                            : 0.0;
   bool blended = uAlphaMode == 2 && uCoverageFrame < 0;
   fragColor = vec4(color, uEnvWeight * (blended ? s.baseColor.a : reusable));
+}
+
+void main() {
+  shade();
+#if PN_ACCUMULATE
+  fragColor = runningMean(texelFetch(uPrevious, ivec2(gl_FragCoord.xy), 0), fragColor);
+#endif
 }

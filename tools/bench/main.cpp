@@ -52,8 +52,9 @@ struct Row {
 
 // Settings given with --set KEY=VALUE, applied to every run (A/B of one setting).
 std::vector<std::pair<std::string, std::string>> gExtraSettings;
-bool gLightCache = true;        // --no-light-cache turns it off
-bool gQuarterOcclusion = true;  // --full-occlusion turns it off
+bool gLightCache = true;         // --no-light-cache turns it off
+bool gQuarterOcclusion = true;   // --full-occlusion turns it off
+bool gFusedAccumulation = true;  // --separate-accumulation turns it off
 
 Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
                 bool probeCache, bool probeVolume = true) {
@@ -70,7 +71,8 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   auto r = Renderer::create({.profilePasses = breakdown,
                              .probeCache = probeCache,
                              .lightCache = gLightCache,
-                             .quarterOcclusion = gQuarterOcclusion});
+                             .quarterOcclusion = gQuarterOcclusion,
+                             .fusedAccumulation = gFusedAccumulation});
   if (!r) return r.error();
   PN_TRY(job->applyTo(**r));
   // Warm-up: one full run compiles every program and touches every target.
@@ -211,11 +213,16 @@ int main(int argc, char** argv) {
   bool fullOcclusion = false;
   app.add_flag("--full-occlusion", fullOcclusion,
                "trace a diffuse occlusion ray per pixel (A/B against a ray per 2x2 block)");
+  bool separateAccumulation = false;
+  app.add_flag("--separate-accumulation", separateAccumulation,
+               "accumulate every frame in a pass of its own (A/B against the lighting pass "
+               "adding its sample to the mean)");
   std::vector<std::string> extra;
   app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
   gLightCache = !noLightCache;
   gQuarterOcclusion = !fullOcclusion;
+  gFusedAccumulation = !separateAccumulation;
   for (const auto& kv : extra) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) {

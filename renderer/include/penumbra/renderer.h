@@ -38,6 +38,10 @@ struct RendererOptions {
   // Diffuse occlusion rays at a quarter of the pixels, each 2x2 block tracing one (off: every
   // pixel traces its own; for A/B runs and tests).
   bool quarterOcclusion = true;
+  // A frame drawn in one lighting pass (no second batch of area lights, no transmissive
+  // surfaces) adds its sample to the running mean as it draws, instead of in an accumulation
+  // pass of its own (off: always the separate pass; for A/B runs and tests).
+  bool fusedAccumulation = true;
 };
 
 // Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob
@@ -78,6 +82,7 @@ struct FrameStats {
   bool probeCacheWritten = false;  // the per-view cache of the volume's lookups was remade
   bool lightCacheWritten = false;  // the area lights' per-view cache took this frame's shading
   bool lightCacheRead = false;     // this frame's area-light samples read that cache
+  bool fusedAccumulation = false;  // the lighting pass added the sample to the mean (no pass)
 };
 
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).

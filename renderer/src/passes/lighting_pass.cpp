@@ -41,9 +41,14 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   auto depth = library.program("mesh.vert", "prepass.frag");
   if (!depth) return depth.error();
   pass.depthOnly_ = *depth;
-  auto bg = FullscreenPass::create(library, "background.frag", /*farPlane=*/true);
+  auto bg = FullscreenPass::create(library, "background.frag", /*farPlane=*/true,
+                                   {{"PN_ACCUMULATE", "0"}});
   if (!bg) return bg.error();
   pass.background_.emplace(std::move(*bg));
+  auto bgAcc = FullscreenPass::create(library, "background.frag", /*farPlane=*/true,
+                                      {{"PN_ACCUMULATE", "1"}});
+  if (!bgAcc) return bgAcc.error();
+  pass.backgroundAccumulating_.emplace(std::move(*bgAcc));
   auto d = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
   if (!d) return d.error();
   const uint8_t black[4] = {0, 0, 0, 0};
@@ -116,7 +121,8 @@ uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool are
   return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
          (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u) | (cubeMaps ? kPointShadows : 0u) |
          (punctual ? punctualKinds(b) << kKindsShift : 0u) |
-         (area && readsLightCache(b) ? kLightCacheRead : 0u) | sampleBits(b, area, punctual);
+         (area && readsLightCache(b) ? kLightCacheRead : 0u) | sampleBits(b, area, punctual) |
+         (b.accumulateFrame > 0 ? kAccumulate : 0u);
 }
 
 Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
@@ -140,6 +146,7 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
       {"PN_AREA_COUNT", std::to_string((pass >> kAreaCountShift) & 7u)},
       {"PN_AREA_STARTS", std::to_string((pass >> kAreaStartsShift) & 15u)},
       {"PN_PUNCTUAL_COUNT", std::to_string((pass >> kPunctualCountShift) & 15u)},
+      {"PN_ACCUMULATE", flag(kAccumulate)},
       {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
                           : (pass & kTransmitOwn)   ? "1"
                                                     : "0"}};
@@ -299,24 +306,38 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uPunctualDisk", std::span<const glm::vec4>(disk));
   p.set("uPointShadowPos", std::span<const glm::vec4>(pointPos));
   p.set("uPointShadowParams", std::span<const glm::vec4>(pointParams));
+  if (b.accumulateFrame > 0) setAccumulation(p, b);
 }
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only
 // uncovered pixels pay for it. `alpha` is 1, or a probe capture's distance for the sky.
 void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
                                   const CameraMatrices& camera, float blur, float alpha) {
-  const gl::Program& bg = background_->begin(/*depthTest=*/true);
+  const FullscreenPass& pass = b.accumulateFrame > 0 ? *backgroundAccumulating_ : *background_;
+  const gl::Program& bg = pass.begin(/*depthTest=*/true);
   b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
   bg.set("uInvViewProj", glm::inverse(camera.projection * camera.view));
   bg.set("uBackgroundBlur", blur);
   bg.set("uBackgroundAlpha", alpha);
-  background_->draw();
+  if (b.accumulateFrame > 0) {
+    // Where no background is shown the sample is the clear colour, (0, 0, 0, 1).
+    bg.set("uBackgroundScale", b.settings->showBackground ? 1.0f : 0.0f);
+    setAccumulation(bg, b);
+  }
+  pass.draw();
 }
 
 void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
-  if (b.settings->showBackground) {
+  // Accumulating, the pixels the scene leaves are drawn whether or not a background is shown.
+  if (b.settings->showBackground || b.accumulateFrame > 0) {
     drawBackground(b, envRotation, *b.camera, b.settings->backgroundBlur, 1.0f);
   }
+}
+
+void LightingPass::setAccumulation(const gl::Program& p, const LightingBatch& b) {
+  b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
+  p.set("uPrevious", kUnitAccumulated);
+  p.set("uWeight", 1.0f / static_cast<float>(b.accumulateFrame));
 }
 
 Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<CaptureView>& views,
@@ -361,8 +382,16 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
 }
 
 Status LightingPass::draw(const LightingBatch& b) {
+  PN_CHECK(b.accumulateFrame == 0 ||
+               (b.first && b.accumulateFrame > 1 && (!b.scene || b.scene->transmissive().empty())),
+           "LightingPass: only a whole frame's only batch accumulates as it draws");
   const glm::mat3 envRotation = environmentLookup(*b.settings);
-  b.targets->frame.framebuffer.bind();
+  // Where the frame's sample goes: the frame target, or the mean being made.
+  const gl::Framebuffer& out =
+      b.accumulateFrame > 0
+          ? b.targets->accumulation[static_cast<size_t>(1 - b.targets->current)].framebuffer
+          : b.targets->frame.framebuffer;
+  out.bind();
   const glm::ivec2 drawn = drawnSize(b);
   gl::setViewport(0, 0, drawn.x, drawn.y);
   if (b.first) {
@@ -370,7 +399,8 @@ Status LightingPass::draw(const LightingBatch& b) {
     // A reduced frame clears only its part (unsplit: no band's scissor is on).
     const bool part = drawn != glm::ivec2(b.targets->width, b.targets->height);
     if (part) gl::setScissor(0, 0, drawn.x, drawn.y);
-    gl::clearBufferFloat(0, 0, 0, 0, 1);
+    // (Accumulating, every pixel is drawn: by the scene or by the background.)
+    if (b.accumulateFrame == 0) gl::clearBufferFloat(0, 0, 0, 0, 1);
     gl::clearDepth(1.0f);
     if (part) gl::disableScissor();
   }
@@ -402,6 +432,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     gl::clearBufferFloat(1, 0, 0, 0, 0);
     LightingBatch writing = b;
     writing.readProbeCache = false;  // the targets being written are not sampled
+    writing.accumulateFrame = 0;
     const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
     const uint32_t cachePass = kCacheWrite | passBits(writing, false, false, false);
     gl::PipelineState cacheState;
@@ -411,7 +442,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     if (b.coverageFrame >= 0) {
       PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->blended(), cacheState, setupCache));
     }
-    b.targets->frame.framebuffer.bind();
+    out.bind();
   }
   if (b.writeLightCache && !b.cachedLights.empty()) {
     // The lights' unshadowed shading where this frame's depth pass left the surfaces, a
@@ -425,6 +456,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     }
     LightingBatch writing = b;
     writing.readLightCache = false;
+    writing.accumulateFrame = 0;
     writing.area = b.cachedLights;
     writing.punctual.clear();
     gl::PipelineState cacheState;
@@ -438,7 +470,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     const uint32_t cachePass = (static_cast<uint32_t>(layers) << kCachedLightsShift) |
                                passBits(writing, false, true, false);
     PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
-    b.targets->frame.framebuffer.bind();
+    out.bind();
   }
   const uint32_t pass = passBits(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
   const auto setup = [&](const gl::Program& p) { setUniforms(p, b, envRotation); };

@@ -86,6 +86,11 @@ struct LightingBatch {
   bool clearLightCache = false;
   float lightCacheWeight = 0.0f;
   bool readLightCache = false;
+  // The frame's only batch, with nothing drawn over it later (no transmissive surfaces), may
+  // add its sample straight to the running mean: frame n (> 1) is drawn, background included,
+  // into the accumulation target that is not current, as mean_{n-1} + (x_n - mean_{n-1}) / n.
+  // The frame target is neither cleared nor written, and no accumulate pass runs.
+  int accumulateFrame = 0;  // n, or 0: draw into the frame target
 };
 
 // One face of a probe capture: its camera and its square in the bound capture target.
@@ -134,6 +139,7 @@ class LightingPass {
     kAreaCountShift = 20,        // PN_AREA_COUNT: the batch's area-light samples (3 bits)
     kAreaStartsShift = 23,       // PN_AREA_STARTS: samples whose light differs from the last's
     kPunctualCountShift = 27,    // PN_PUNCTUAL_COUNT: the batch's punctual samples (4 bits)
+    kAccumulate = 1u << 31,      // PN_ACCUMULATE: the batch adds its sample to the mean
   };
   // The cache layer of scene light `lightIndex` in batch b (-1: not cached).
   static int lightCacheLayer(const LightingBatch& b, int lightIndex);
@@ -150,6 +156,8 @@ class LightingPass {
   // The bits of batch b's own probe state and the given terms.
   static uint32_t passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual);
   Result<gl::Program*> program(uint32_t pass, uint32_t features);
+  // The running mean's inputs of a batch that accumulates as it draws (accumulateFrame).
+  static void setAccumulation(const gl::Program& p, const LightingBatch& b);
   // Draws items, each with the program of its pass and material; `setup` makes a program
   // current and sets the batch's uniforms on it the first time this call uses it. With
   // `instances` > 0 both faces of every item are drawn that many times (probe captures).
@@ -165,6 +173,7 @@ class LightingPass {
   std::unordered_map<uint64_t, gl::Program*> programs_;  // (pass << 32) | features
   gl::Program* depthOnly_ = nullptr;
   std::optional<FullscreenPass> background_;
+  std::optional<FullscreenPass> backgroundAccumulating_;  // PN_ACCUMULATE
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
 };
 

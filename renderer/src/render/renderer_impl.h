@@ -236,6 +236,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     // The part of the frame target drawn: the whole of it, or a preview's reduced part
     // (ProgressiveSettings::previewScale).
     bool preview = false;
+    bool fused = false;  // the lighting pass accumulates (LightingBatch::accumulateFrame)
     int drawWidth = 0, drawHeight = 0;
     std::vector<passes::LightingBatch> batches;
     std::vector<std::function<Status()>> units;
@@ -265,6 +266,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
       endPass(&stats.accumulateMs);
     } else if (pending.plan.frame == 1) {
       if (t == k - 1) targets->takeFrameAsMean();  // mean_1 = x_1: no pass needed
+    } else if (pending.fused) {
+      if (t == k - 1) targets->current = 1 - targets->current;  // drawn by the lighting pass
+      stats.fusedAccumulation = true;
     } else {
       accumulate->draw(*targets, pending.plan.frame);
       if (t == k - 1) targets->current = 1 - targets->current;  // the new mean
@@ -417,6 +421,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
         area.size() <= firstBatch ? 1 : 1 + (area.size() - firstBatch + kBatch - 1) / kBatch;
     pending.batches.reserve(batches);
     const bool transmissive = scene && !scene->transmissive().empty();
+    // One batch and nothing drawn over it: it adds its sample to the mean as it draws.
+    pending.fused = options.fusedAccumulation && batches == 1 && !transmissive && plan.frame > 1 &&
+                    !pending.preview;
     for (size_t b = 0; b < batches; ++b) {
       pending.batches.push_back(passes::LightingBatch{
           .targets = &*targets,
@@ -441,7 +448,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           .writeLightCache = b == 0 && writeLightCache,
           .clearLightCache = clearLightCache,
           .lightCacheWeight = 1.0f / static_cast<float>(progressive::lightCacheFrames(m)),
-          .readLightCache = readLightCache});
+          .readLightCache = readLightCache,
+          .accumulateFrame = pending.fused ? plan.frame : 0});
       passes::LightingBatch& batch = pending.batches.back();
       const size_t from = b == 0 ? 0 : firstBatch + (b - 1) * kBatch;
       const size_t to = b == 0 ? firstBatch : from + kBatch;
