@@ -134,11 +134,7 @@ Status buildGpuState(Viewer& v) {
   auto ctx = GlContext::create({.backend = GlBackend::WebGL2, .canvasSelector = v.selector});
   if (!ctx) return ctx.error();
   v.context = std::move(*ctx);
-  // No accumulation in the lighting pass (RendererOptions::fusedAccumulation): in headless
-  // Chromium on SwiftShader it made a frame about 20 % slower, where natively on llvmpipe it
-  // saves the accumulate pass (README, performance). Unmeasured on a real GPU.
-  auto r = Renderer::create(
-      {.desktopGl = false, .forceHalfFloat = v.forceHalfFloat, .fusedAccumulation = false});
+  auto r = Renderer::create({.desktopGl = false, .forceHalfFloat = v.forceHalfFloat});
   if (!r) return r.error();
   v.renderer = std::move(*r);
   PN_TRY(v.renderer->setSettings(v.settings));
