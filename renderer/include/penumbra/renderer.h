@@ -80,6 +80,7 @@ struct FrameStats {
   int probeCaptures = 0;           // probes of the probe volume captured in this frame
   double probeMs = 0;              // their time (with profilePasses)
   bool probeCacheWritten = false;  // the per-view cache of the volume's lookups was remade
+  bool probeLookups = false;       // the lighting read the probe volume (not while it is empty)
   bool lightCacheWritten = false;  // the area lights' per-view cache took this frame's shading
   bool lightCacheRead = false;     // this frame's area-light samples read that cache
   bool fusedAccumulation = false;  // the lighting pass added the sample to the mean (no pass)

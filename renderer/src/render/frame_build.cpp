@@ -89,6 +89,11 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
     probeCacheCaptures = captured;
   }
   stats.probeCacheWritten = writeProbeCache;
+  // An empty volume (no capture yet: the first frame after a reset) answers nothing, so frames
+  // without occlusion rays skip its per-pixel lookup; later frames keep it, so that the
+  // per-view cache's remakes stay on their schedule.
+  const bool probeLookups = probesOn() && (occlusion || probes->captures() > 0);
+  stats.probeLookups = probeLookups;
   // The area lights' per-view cache (progressive/light_cache.h): every area light of the scene
   // (up to kMaxCachedLights), opaque scenes only (BLEND surfaces cover differently each frame).
   std::vector<passes::AreaSampleDraw> cachedLights;
@@ -169,7 +174,7 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
         // Occlusion only in the first batch: later ones add light.
         .occlusion = b == 0 && occlusion,
         .coverageFrame = cameraCoverageFrame(plan),
-        .probes = probesOn() ? &*probes : nullptr,
+        .probes = probeLookups ? &*probes : nullptr,
         .writeProbeCache = b == 0 && writeProbeCache,
         .readProbeCache = b == 0 && probeCache,
         .cachedLights = cachedLights,
