@@ -203,15 +203,21 @@ TEST_F(ProbeVolumeGLTest, ThinWallKeepsTheDarkRoomDark) {
   EXPECT_TRUE(matchesImage(dark, black, {0.1 * lit, 0.05 * lit}, "probe_volume_thin_wall"));
 }
 
-// The volume is a pure function of the scene, settings and the calls made: two renderers
-// give the same bits.
-TEST_F(ProbeVolumeGLTest, CapturesAreReproducible) {
+// A closed grey room with a block on its floor, lit by a ceiling light.
+Scene litBoxWithBlock() {
   Scene s;
   s.materials = {pureLambert(0.6f)};
   s.meshes.push_back(insideBox({-1, -1, -1}, {1, 1, 1}, 0));
   s.meshes.push_back(boxMesh({-0.3f, -1.0f, -0.3f}, {0.3f, 0.2f, 0.3f}, 0));
   s.lights.push_back(ceilingLight({0.0f, 0.9f, 0.0f}, 0.5f, 10.0f));
   finishScene(s);
+  return s;
+}
+
+// The volume is a pure function of the scene, settings and the calls made: two renderers
+// give the same bits.
+TEST_F(ProbeVolumeGLTest, CapturesAreReproducible) {
+  const Scene s = litBoxWithBlock();
   RenderSettings rs = smallSettings(true);
   rs.progressive.frames = 24;
   Image a, b;
@@ -228,12 +234,7 @@ TEST_F(ProbeVolumeGLTest, CapturesAreReproducible) {
 // them and is bit for bit frame 1 without a volume. Once the volume holds captures, frame 1 of
 // the next view looks it up and shows the bounced light.
 TEST_F(ProbeVolumeGLTest, EmptyVolumeIsNotLookedUp) {
-  Scene s;
-  s.materials = {pureLambert(0.6f)};
-  s.meshes.push_back(insideBox({-1, -1, -1}, {1, 1, 1}, 0));
-  s.meshes.push_back(boxMesh({-0.3f, -1.0f, -0.3f}, {0.3f, 0.2f, 0.3f}, 0));
-  s.lights.push_back(ceilingLight({0.0f, 0.9f, 0.0f}, 0.5f, 10.0f));
-  finishScene(s);
+  const Scene s = litBoxWithBlock();
   const Camera first = lookAtCamera({0.0f, 0.5f, 0.95f}, {0.0f, -0.5f, 0.0f}, 90.0f);
   const Camera second = lookAtCamera({0.2f, 0.4f, 0.95f}, {0.0f, -0.5f, 0.0f}, 90.0f);
   auto frameOne = [](Renderer& r, const Camera& c, Image* out) {
