@@ -392,11 +392,6 @@ Status LightingPass::draw(const LightingBatch& b) {
           ? b.targets->accumulation[static_cast<size_t>(1 - b.targets->current)].framebuffer
           : b.targets->frame.framebuffer;
   out.bind();
-  if (b.accumulateFrame > 0) {
-    // The target being drawn was the mean the tone mapping last read from unit 0: leave no
-    // texture unit holding it (a browser's GL may otherwise treat each draw as a feedback loop).
-    dummy_.bind(0);
-  }
   const glm::ivec2 drawn = drawnSize(b);
   gl::setViewport(0, 0, drawn.x, drawn.y);
   if (b.first) {
