@@ -18,6 +18,7 @@
 import createPenumbraViewerModule from './penumbra_viewer.js';
 import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
 import { provideDecoders } from './decoders.mjs';
+import { bindWasmApi, timeSteps } from './wasm_api.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
 
@@ -105,28 +106,7 @@ export class Viewer {
                          adaptiveResolution: opts.adaptiveResolution, maxSplit: opts.maxSplit };
     this.#adapt = new Adaptation({ minStillScale: opts.minStillScale,
                                    minMotionScale: opts.minMotionScale });
-    const s = 'string', n = 'number';
-    const w = (name, ret, args) => mod.cwrap(name, ret, args);
-    this.#pv = {
-      pv_create: w('pv_create', s, [s, n]), pv_destroy: w('pv_destroy', null, []),
-      pv_alloc: w('pv_alloc', n, [n]), pv_free: w('pv_free', null, [n]),
-      pv_write_file: w('pv_write_file', s, [s, n, n]), pv_remove_tree: w('pv_remove_tree', null, [s]),
-      pv_load_scene: w('pv_load_scene', s, [s, s]),
-      pv_set_environment: w('pv_set_environment', s, [s, s]),
-      pv_set_uniform_environment: w('pv_set_uniform_environment', s, [n, n, n]),
-      pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
-      pv_settings_schema: w('pv_settings_schema', s, []),
-      pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),
-      pv_reset_camera: w('pv_reset_camera', s, []),
-      pv_step: w('pv_step', n, []), pv_last_error: w('pv_last_error', s, []),
-      pv_step_part: w('pv_step_part', n, []), pv_set_tiles: w('pv_set_tiles', n, [n]),
-      pv_last_part: w('pv_last_part', n, []), pv_last_parts: w('pv_last_parts', n, []),
-      pv_sync: w('pv_sync', null, []), pv_present: w('pv_present', s, [n, n]),
-      pv_read: w('pv_read', s, [n]), pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
-      pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
-      pv_context_lost: w('pv_context_lost', null, []),
-      pv_context_restored: w('pv_context_restored', s, []),
-    };
+    this.#pv = bindWasmApi(mod);
   }
 
   // ---- public API ---------------------------------------------------------------------------
@@ -334,18 +314,9 @@ export class Viewer {
     try {
       const m = frames || this.#pv.pv_total_frames();
       const run = (syncEach) => {
-        this.#pv.pv_restart();
-        this.#pv.pv_sync();
-        const t0 = performance.now();
-        let n = 0;
-        for (let f = this.#pv.pv_step(); f > 0; f = this.#pv.pv_step()) {
-          if (f < 0) break;
-          if (syncEach) this.#pv.pv_sync();
-          if (++n >= m) break;
-        }
-        this.#pv.pv_sync();
-        if (n === 0) throw new PenumbraError(this.#lastError());
-        return { frames: n, ms: performance.now() - t0 };
+        const r = timeSteps(this.#pv, m, syncEach);
+        if (r.frames === 0) throw new PenumbraError(this.#lastError());
+        return r;
       };
       run(false);  // warm-up
       const a = run(false);
