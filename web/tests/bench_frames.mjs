@@ -10,8 +10,9 @@
 // (adaptive=0&split=1: nothing adapts, so the figures compare builds), m frames of a still
 // view. Prints the first frame (its work time, as the viewer measures it), the milliseconds
 // per frame from frame 2 to convergence (wall time between the presented frames: what a user
-// waits), the median interval between presented frames, and the time from the view's start to
-// convergence (the viewer's own figure). To measure another build
+// waits), the median interval between presented frames, the longest one and the frame it
+// ended (a hitch: a program linked mid-view, the probe volume's young frames), and the time from
+// the view's start to convergence (the viewer's own figure). To measure another build
 // of the page (e.g. the main branch's), point PENUMBRA_WEB_DIST at its web/dist and pass
 // --label main.
 import { closeServer, dist, serve, withPage } from './harness.mjs';
@@ -65,12 +66,15 @@ async function run(server, scene) {
     const from = shown.find((p) => p.frame >= 2);
     const last = shown[shown.length - 1];
     const intervals = shown.slice(1).map((p, i) => p.t - shown[i].t);
+    const longest = intervals.reduce((best, ms, i) => (ms > best.ms ? { ms, frame: shown[i + 1].frame }
+                                                                    : best), { ms: -Infinity, frame: 0 });
     return {
       render: `${r.state.renderWidth}x${r.state.renderHeight}`,
       frame1Ms: r.state.frame1Ms,
       perFrameMs: from && last.frame > from.frame ? (last.t - from.t) / (last.frame - from.frame)
                                                   : NaN,
       medianMs: median(intervals),
+      longest,
       totalS: (r.state.convergedMs ?? NaN) / 1000,
       frames: last.frame,
     };
@@ -80,13 +84,14 @@ async function run(server, scene) {
 const server = await serve(dist);
 try {
   console.log(`| build | scene | render size | m | first frame (ms) | per frame (ms) | ` +
-              `median interval (ms) | start to converged (s) |`);
-  console.log('|---|---|---|---|---|---|---|---|');
+              `median interval (ms) | longest interval (ms, frame) | start to converged (s) |`);
+  console.log('|---|---|---|---|---|---|---|---|---|');
   for (const scene of scenes) {
     for (let i = 0; i < runs; i++) {
       const r = await run(server, scene);
       console.log(`| ${label} | ${scene} | ${r.render} | ${r.frames} | ${r.frame1Ms.toFixed(0)} | ` +
-                  `${r.perFrameMs.toFixed(1)} | ${r.medianMs.toFixed(1)} | ${r.totalS.toFixed(2)} |`);
+                  `${r.perFrameMs.toFixed(1)} | ${r.medianMs.toFixed(1)} | ` +
+                  `${r.longest.ms.toFixed(0)} (${r.longest.frame}) | ${r.totalS.toFixed(2)} |`);
     }
   }
 } finally {
