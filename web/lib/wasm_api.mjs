@@ -25,7 +25,8 @@ export function bindWasmApi(mod) {
     pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
     pv_context_lost: w('pv_context_lost', null, []),
     pv_context_restored: w('pv_context_restored', s, []),
-  };}
+  };
+}
 
 // Restarts the view and times up to `frames` steps back to back: with one read-back at the end
 // (throughput), or after every step (`syncEach`: latency, what the time budget sees). Returns
