@@ -119,19 +119,36 @@ TEST(DistributorTest, TheEnvironmentsSunShinesFromFrameOne) {
   }
 }
 
-TEST(DistributorTest, DarkEnvironmentStartsDirectLightAtFrameTwo) {
-  ProgressiveSettings s;
-  s.frames = 128;
-  auto plan = distributeSamples(s, lights(1), /*darkEnvironment=*/true);
-  EXPECT_TRUE(plan[0].lights.empty());
-  EXPECT_FALSE(plan[1].lights.empty());
-  double w = 0.0;
-  for (const auto& f : plan) {
-    for (const auto& l : f.lights) w += l.weight;
+TEST(DistributorTest, FirstLightLightsFrameOneAndKeepsTheMean) {
+  // Where the scene's own lights carry it, frame 1 evaluates each from its centre with weight
+  // 1 (frame 1's mean shows every light at full strength), the rest start at frame 2, and each
+  // light still carries its full energy at frame m.
+  for (int nl : {1, 3}) {
+    ProgressiveSettings s;
+    s.frames = 128;
+    auto plan = distributeSamples(s, lights(nl), /*firstLight=*/true);
+    ASSERT_EQ(plan[0].lights.size(), static_cast<size_t>(nl));
+    std::map<int, double> first, total;
+    for (const auto& l : plan[0].lights) {
+      EXPECT_EQ(l.point, glm::vec2(0.5f));
+      EXPECT_TRUE(l.shadowed);
+      first[l.light] += l.weight;
+    }
+    for (const auto& f : plan) {
+      for (const auto& l : f.lights) total[l.light] += l.weight;
+    }
+    for (int i = 0; i < nl; ++i) {
+      EXPECT_FLOAT_EQ(first[i], 1.0f);
+      EXPECT_NEAR(total[i], 128.0, 1e-3);
+    }
+    EXPECT_FALSE(plan[1].lights.empty());
   }
-  EXPECT_NEAR(w, 128.0, 1e-3);
   EXPECT_EQ(directStartFrame(128, 0.3f, true), 2);
   EXPECT_EQ(directStartFrame(1, 0.3f, true), 1);
+  // Without first light, frame 1 stays environment only (the paper's rule).
+  ProgressiveSettings s;
+  s.frames = 128;
+  EXPECT_TRUE(distributeSamples(s, lights(2)).front().lights.empty());
 }
 
 TEST(DistributorTest, SingleFrameEvaluatesEveryLightOnce) {

@@ -82,11 +82,23 @@ TEST(SettingsSchemaTest, JsonMergeTakesEveryKeyAndRefusesUnknownOnes) {
   auto again = mergeSettingsJson(RenderSettings{}, settingsToJson(*merged));
   ASSERT_TRUE(again.ok()) << again.message();
   EXPECT_EQ(*again, *merged);
-  for (const char* bad : {R"({"indirectClmp": 4})", R"({"frames": "many"})", R"({"frames": 0})",
+  for (const char* bad : {R"({"indirectClmp": 4})", R"({"frames": "many"})", R"({"frames": -1})",
                           R"({"showBackground": 1})", "[1]", "not json"}) {
     auto r = mergeSettingsJson(s, bad);
     EXPECT_FALSE(r.ok()) << bad;
   }
+  // frames: "auto" is 0, written back as "auto"; the text form reads the same.
+  auto automatic = mergeSettingsJson(s, R"({"frames": "auto", "maxFrames": 256})");
+  ASSERT_TRUE(automatic.ok()) << automatic.message();
+  EXPECT_EQ(automatic->progressive.frames, 0);
+  EXPECT_EQ(planFrames(automatic->progressive), 256);
+  EXPECT_NE(settingsToJson(*automatic).find(R"("frames":"auto")"), std::string::npos);
+  RenderSettings text;
+  ASSERT_TRUE(setSettingText(text, *findSetting("frames"), "64").ok());
+  ASSERT_TRUE(setSettingText(text, *findSetting("frames"), "auto").ok());
+  EXPECT_EQ(text.progressive.frames, 0);
+  EXPECT_EQ(settingText(text, *findSetting("frames")), "auto");
+  EXPECT_EQ(settingRange(*findSetting("frames")), "auto or 1..4096");
   // The viewer may not set the size: the canvas does.
   EXPECT_FALSE(mergeSettingsJson(s, R"({"width": 100})", /*viewerOnly=*/true).ok());
   EXPECT_TRUE(mergeSettingsJson(s, R"({"width": 100})").ok());

@@ -1,5 +1,6 @@
 #include "progress.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace penumbra::tools {
@@ -10,13 +11,14 @@ ProgressBar::ProgressBar(std::string label, int total, bool enabled)
       enabled_(enabled),
       start_(std::chrono::steady_clock::now()) {}
 
-void ProgressBar::update(int done) {
+void ProgressBar::update(int done, int total) {
+  if (total > 0) total_ = total;
   if (!enabled_ || total_ <= 0) return;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double left = done > 0 ? elapsed / done * (total_ - done) : 0.0;
   const int width = 30;
-  const int filled = width * done / total_;
+  const int filled = width * std::min(done, total_) / total_;
   std::fprintf(stderr, "\r%s [%.*s%*s] frame %d of %d, %.1f s left   ", label_.c_str(), filled,
                "##############################", width - filled, "", done, total_, left);
   std::fflush(stderr);

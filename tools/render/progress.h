@@ -9,7 +9,8 @@ namespace penumbra::tools {
 class ProgressBar {
  public:
   ProgressBar(std::string label, int total, bool enabled);
-  void update(int done);
+  // `total` may change as it goes (an automatic view's expected frames).
+  void update(int done, int total = 0);
   void finish();
 
  private:

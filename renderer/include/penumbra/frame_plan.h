@@ -24,6 +24,9 @@ struct FramePlan {
   bool renderPrepass = false;  // (re)render the depth and normal prepass before this frame
   glm::vec2 sequence{0.0f};    // this frame's low-discrepancy point for occlusion sampling
   glm::vec2 skyPoint{0.0f};    // this frame's point for choosing its sky-shadow direction
+  // The frame ends a block of the plan (progressive/distributor.h): every light carries its
+  // full energy in the mean, which an automatic view measures for convergence here.
+  bool checkpoint = false;
   std::vector<LightSample> lights;
 };
 

@@ -1,7 +1,9 @@
 // Renderer: Penumbra's progressive renderer. Give it a scene, an environment, a camera and
 // settings; each step() draws and accumulates one cheap intermediate frame chosen by the
-// progressive controller (frame 1: environment only; depth/normal prepass at frame 2; area
-// lights with one shadow map per light sample from frame floor(m f_d)), until frame m.
+// progressive controller (frame 1: environment only, plus each light from its centre where the
+// scene's own lights carry it; depth/normal prepass at frame 2; area lights with one shadow map
+// per light sample from frame floor(m f_d)), until frame m or, for an automatic view, until its
+// image is measured converged (convergence()).
 // readRadiance() gives the linear running mean, readDisplay() the exposed, tone-mapped image.
 // Needs a current GL context (GlContext::create) for its whole life.
 #pragma once
@@ -86,6 +88,24 @@ struct FrameStats {
   bool fusedAccumulation = false;  // the lighting pass added the sample to the mean (no pass)
 };
 
+// How far a view is from done. An automatic view (ProgressiveSettings::frames 0) measures its
+// displayed image at checkpoints (frames 8, 16, 32, ...; docs/architecture.md, "Measured
+// convergence") and stops when its displayed image changed by less than convergenceThreshold
+// 8-bit steps (RMS) since the previous checkpoint and 99 % of its 8x8 tiles by less than four
+// times that.
+struct ConvergenceInfo {
+  bool automatic = false;  // frames is auto
+  bool measured = false;   // a checkpoint after the first has been measured in this view
+  bool converged = false;  // the last measurement met the criterion
+  int frame = 0;           // the last measured checkpoint
+  double error = 0.0;      // its RMS change over the image (8-bit steps): the estimated error
+  double tileError = 0.0;  // its 99th-percentile tile change (RMS, 8-bit steps)
+  double convergedTiles = 0.0;  // the fraction of tiles under four times the threshold
+  // The frame by which the view is expected to be done: m; for an automatic view from the
+  // error's 1/sqrt(N) fall, a checkpoint, at most maxFrames (its frame once converged).
+  int expectedFrames = 0;
+};
+
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).
 struct ProbeVolumeInfo {
   int probes = 0;
@@ -131,9 +151,12 @@ class Renderer {
   // frame n of a fresh renderer. Changes restart accumulation by themselves; a camera change
   // keeps the probe volume, which does not depend on the view.
   void restart();
+  // Frame m is done, or an automatic view measured itself converged or reached maxFrames.
   bool converged() const;
   int framesDone() const;
+  // m, or an automatic view's cap (maxFrames).
   int totalFrames() const;
+  ConvergenceInfo convergence() const;
   const FrameStats& lastFrame() const;
   ProbeVolumeInfo probeVolumeInfo() const;
 

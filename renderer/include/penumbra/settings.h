@@ -20,7 +20,14 @@ const char* toneMapperName(ToneMapper t);
 Result<ToneMapper> parseToneMapper(std::string_view name);
 
 struct ProgressiveSettings {
-  int frames = 128;          // m, the target number of intermediate frames (1..4096)
+  // m, the number of intermediate frames (1..4096), or 0 ("auto"): frames until the displayed
+  // image is measured converged (progressive/convergence.h), at most maxFrames.
+  int frames = 0;
+  int maxFrames = 1024;  // auto's cap
+  // Auto: converged when the displayed image (8-bit steps, RMS) changed by less than this
+  // between the last two checkpoints (frames 8, 16, 32, ...) and 99 % of its 8x8 tiles by less
+  // than four times this (progressive/convergence.h).
+  float convergenceThreshold = 1.0f;
   float directDelay = 0.3f;  // f_d: direct-light samples start at frame floor(m * f_d)
   // Renderer::preview, the image shown while the view moves: frame 1 (environment only) drawn
   // at this fraction of the width and height and upsampled, a quarter of the pixels at 0.5.
@@ -54,6 +61,11 @@ struct ProgressiveSettings {
   uint32_t seed = 1;          // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };
+
+// The frames the sample plan covers: m, or auto's cap.
+inline int planFrames(const ProgressiveSettings& s) {
+  return s.frames > 0 ? s.frames : s.maxFrames;
+}
 
 // The automatic occlusion distance as a fraction of the scene's bounding-box diagonal.
 inline constexpr float kAutoOcclusionFraction = 0.25f;
@@ -104,6 +116,7 @@ struct SettingInfo {
   // Number, 0/1 or the ToneMapper's index; set() takes a value already checked.
   double (*get)(const RenderSettings&);
   void (*set)(RenderSettings&, double);
+  bool zeroIsAuto = false;  // an Int whose 0 reads and writes as "auto"
 };
 
 // The whole table, in documentation order.

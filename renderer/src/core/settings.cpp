@@ -84,8 +84,18 @@ const SettingInfo kSchema[] = {
     {"backgroundBlur", "background", "blur", "--background-blur", SettingType::Float, 0, 1, false,
      false, false, true, "background blur: 0 sharp, 1 the roughest prefiltered mip",
      PN_FIELD(backgroundBlur, float)},
-    {"frames", "progressive", "frames", "--frames", SettingType::Int, 1, 4096, false, false, false,
-     true, "intermediate frames m", PN_FIELD(progressive.frames, int)},
+    {"frames", "progressive", "frames", "--frames", SettingType::Int, 0, 4096, false, false, false,
+     true,
+     "intermediate frames m, or auto (0): until the displayed image is measured converged, at "
+     "most maxFrames",
+     PN_FIELD(progressive.frames, int), true},
+    {"maxFrames", "progressive", "maxFrames", "--max-frames", SettingType::Int, 16, 4096, false,
+     false, false, true, "the most frames an auto view draws", PN_FIELD(progressive.maxFrames, int)},
+    {"convergenceThreshold", "progressive", "convergenceThreshold", "--convergence-threshold",
+     SettingType::Float, 0, 255, true, false, false, true,
+     "auto frames: converged when the displayed image changed by less than this many 8-bit "
+     "steps (RMS) since the last checkpoint and 99 % of its 8x8 tiles by less than 4 times it",
+     PN_FIELD(progressive.convergenceThreshold, float)},
     {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
      "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
     // Not the web viewer's: it lowers its own resolution while the camera moves.
@@ -184,10 +194,16 @@ Result<double> settingFromJson(const json& v, const SettingInfo& info) {
     }
     case SettingType::Int:
     case SettingType::UInt:
+      if (info.zeroIsAuto && v.is_string() && v.get<std::string>() == "auto") return 0.0;
       // JSON.stringify writes whole numbers without a fraction; 3.5 frames is a mistake.
       if (!v.is_number_integer() &&
           !(v.is_number_float() && std::trunc(v.get<double>()) == v.get<double>())) {
-        return makeError("setting '" + key + "' must be an integer");
+        return makeError("setting '" + key + "' must be an integer" +
+                         (info.zeroIsAuto ? " or \"auto\"" : ""));
+      }
+      if (info.zeroIsAuto && v.get<double>() == 0.0) {
+        // "auto" is spelt out: a 0 is more likely a mistake than a wish.
+        return makeError("invalid setting: " + key + " 0 (must be " + settingRange(info) + ")");
       }
       return v.is_number_unsigned()  ? static_cast<double>(v.get<uint64_t>())
              : v.is_number_integer() ? static_cast<double>(v.get<int64_t>())
@@ -207,6 +223,7 @@ json settingJson(const RenderSettings& s, const SettingInfo& info) {
     case SettingType::ToneMapper:
       return toneMapperName(static_cast<ToneMapper>(static_cast<int>(v)));
     case SettingType::Int:
+      if (info.zeroIsAuto && v == 0.0) return "auto";
       return static_cast<int64_t>(v);
     case SettingType::UInt:
       return static_cast<uint64_t>(v);
@@ -237,7 +254,10 @@ const SettingInfo* findSetting(std::string_view key) {
 std::string settingRange(const SettingInfo& info) {
   if (info.type == SettingType::Bool) return "true or false";
   if (info.type == SettingType::ToneMapper) return "pbr-neutral, aces, reinhard or none";
-  if (integral(info.type)) return number(info.min) + ".." + number(info.max);
+  if (integral(info.type)) {
+    return (info.zeroIsAuto ? "auto or " + number(info.min + 1) : number(info.min)) + ".." +
+           number(info.max);
+  }
   return std::string(info.minExclusive ? "(" : "[") + number(info.min) + ", " + number(info.max) +
          (info.maxExclusive ? ")" : "]");
 }
@@ -273,11 +293,16 @@ Status setSettingText(RenderSettings& s, const SettingInfo& info, std::string_vi
     return makeError("invalid setting: " + std::string(info.key) + " '" + t +
                      "' (must be true or false)");
   }
+  if (info.zeroIsAuto && t == "auto") return setSetting(s, info, 0.0);
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
   if (t.empty() || end != t.c_str() + t.size()) {
     return makeError("invalid setting: " + std::string(info.key) + " '" + t + "' is not " +
                      (integral(info.type) ? "an integer" : "a number"));
+  }
+  if (info.zeroIsAuto && v == 0.0) {
+    return makeError("invalid setting: " + std::string(info.key) + " 0 (must be " +
+                     settingRange(info) + ")");
   }
   return setSetting(s, info, v);
 }
@@ -330,6 +355,7 @@ std::string settingsSchemaJson() {
               {"help", info.help},
               {"viewer", info.viewer},
               {"range", settingRange(info)}};
+    if (info.zeroIsAuto) e["auto"] = true;
     if (info.type != SettingType::Bool && info.type != SettingType::ToneMapper) {
       e["min"] = info.min;
       if (std::isfinite(info.max)) e["max"] = info.max;

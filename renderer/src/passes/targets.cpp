@@ -108,4 +108,15 @@ Status RenderTargets::ensureOcclusion(int block) {
   return {};
 }
 
+Status RenderTargets::ensureConvergence(int tile) {
+  if (checkpoint.color) return {};
+  auto snap = makeColor(width, height, format, nullptr);
+  if (!snap) return makeError("checkpoint target: " + snap.message());
+  auto tiles = makeColor(tilesWidth(tile), tilesHeight(tile), format, nullptr);
+  if (!tiles) return makeError("convergence target: " + tiles.message());
+  checkpoint = std::move(*snap);
+  convergenceTiles = std::move(*tiles);
+  return {};
+}
+
 }  // namespace penumbra::passes

@@ -49,6 +49,14 @@ struct RenderTargets {
   ColorTarget glassLight;
   ColorTarget behind;
 
+  // An automatic view's convergence measure (progressive/convergence.h): the mean at the last
+  // checkpoint (accumulation format) and the tiles' changes, a texel a tile of `tile` pixels
+  // (RGBA32F where renderable, else the accumulation format). Made on first use.
+  ColorTarget checkpoint;
+  ColorTarget convergenceTiles;
+  int tilesWidth(int tile) const { return (width + tile - 1) / tile; }
+  int tilesHeight(int tile) const { return (height + tile - 1) / tile; }
+
   static Result<RenderTargets> create(int width, int height, gl::PixelFormat accumulationFormat,
                                       gl::PixelFormat prepassFormat);
   // After frame 1 the mean is frame 1 itself: the frame target becomes the mean by swapping
@@ -60,6 +68,7 @@ struct RenderTargets {
   Status ensureLightCache(int layers);
   Status ensureTransmission();
   Status ensureOcclusion(int block);
+  Status ensureConvergence(int tile);
 
   void takeFrameAsMean() {
     std::swap(frame, accumulation[static_cast<size_t>(1 - current)]);

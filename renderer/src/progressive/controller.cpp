@@ -21,16 +21,16 @@ void Controller::setLights(const std::vector<LightInfo>& lights) {
   restart();
 }
 
-void Controller::setDarkEnvironment(bool dark) {
-  if (dark == darkEnvironment_) return;
-  darkEnvironment_ = dark;
+void Controller::setFirstLight(bool firstLight) {
+  if (firstLight == firstLight_) return;
+  firstLight_ = firstLight;
   planValid_ = false;
   restart();
 }
 
 const std::vector<FramePlan>& Controller::plan() {
   if (!planValid_) {
-    plan_ = distributeSamples(settings_, lights_, darkEnvironment_);
+    plan_ = distributeSamples(settings_, lights_, firstLight_);
     planValid_ = true;
   }
   return plan_;
@@ -41,7 +41,9 @@ Result<int> Controller::step(FrameRenderer& renderer) {
   if (!inFrame_) {
     const FramePlan& frame = plan()[static_cast<size_t>(next_ - 1)];
     PN_TRY(renderer.renderFrame(frame));
-    return next_++;
+    const int done = next_;
+    PN_TRY(finishFrame(renderer));
+    return done;
   }
   for (;;) {
     auto part = stepPart(renderer);
@@ -62,7 +64,28 @@ Result<PartStep> Controller::stepPart(FrameRenderer& renderer) {
     inFrame_ = true;
     return PartStep{.frame = next_, .done = false};
   }
-  return PartStep{.frame = next_++, .done = true};
+  const int complete = next_;
+  PN_TRY(finishFrame(renderer));
+  return PartStep{.frame = complete, .done = true};
+}
+
+Status Controller::finishFrame(FrameRenderer& renderer) {
+  const FramePlan& frame = plan()[static_cast<size_t>(next_ - 1)];
+  ++next_;
+  if (!automatic() || !frame.checkpoint || stopped_) return {};
+  auto tiles = renderer.measureTiles(frame.frame);
+  if (!tiles) return tiles.error();
+  if (tiles->empty()) return {};
+  estimate_ = summarizeTiles(*tiles, settings_.convergenceThreshold, frame.frame);
+  stopped_ = estimate_.converged;
+  return {};
+}
+
+int Controller::expectedFrames() const {
+  if (!automatic()) return settings_.frames;
+  if (stopped_) return framesDone();
+  return progressive::expectedFrames(estimate_, settings_.convergenceThreshold,
+                                     planFrames(settings_));
 }
 
 }  // namespace penumbra::progressive

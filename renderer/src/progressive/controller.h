@@ -2,7 +2,9 @@
 // the renderer. It asks a FrameRenderer (the real renderer, or a mock in tests) to draw frame
 // n of the plan; a camera, scene or setting change restarts at frame 1. A frame may be drawn in
 // parts (stepPart): the counter advances only when its last part is done, so frame n stays
-// frame n of the plan however it was split.
+// frame n of the plan however it was split. An automatic view (frames 0) asks the renderer to
+// measure its image at each checkpoint of the plan and stops once it has converged
+// (progressive/convergence.h), or at maxFrames.
 #pragma once
 
 #include <vector>
@@ -10,6 +12,7 @@
 #include "penumbra/error.h"
 #include "penumbra/frame_plan.h"
 #include "penumbra/settings.h"
+#include "progressive/convergence.h"
 #include "progressive/distributor.h"
 
 namespace penumbra::progressive {
@@ -25,6 +28,13 @@ class FrameRenderer {
     (void)begin;
     PN_TRY(renderFrame(plan));
     return true;
+  }
+  // At a checkpoint of an automatic view, after its frame is complete: the RMS change of the
+  // displayed image per tile since the previous checkpoint of this view (empty at the first),
+  // in 8-bit steps; the renderer keeps this checkpoint's image for the next.
+  virtual Result<std::vector<float>> measureTiles(int frame) {
+    (void)frame;
+    return std::vector<float>{};
   }
 };
 
@@ -42,8 +52,9 @@ class Controller {
   // Each of these restarts at frame 1 when it changes anything.
   void setSettings(const ProgressiveSettings& settings);
   void setLights(const std::vector<LightInfo>& lights);
-  // A black environment: direct light starts at frame 2 instead of floor(m f_d).
-  void setDarkEnvironment(bool dark);
+  // The scene's own lights carry it: frame 1 evaluates each from its centre, the rest start at
+  // frame 2 instead of floor(m f_d) (distributeSamples).
+  void setFirstLight(bool firstLight);
   // The camera or the scene changed: restart (the plan itself stays the same).
   void invalidate() { restart(); }
 
@@ -56,8 +67,16 @@ class Controller {
   bool inFrame() const { return inFrame_; }
 
   int framesDone() const { return next_ - 1; }
-  int totalFrames() const { return settings_.frames; }
-  bool converged() const { return next_ > settings_.frames; }
+  // m, or an automatic view's cap.
+  int totalFrames() const { return planFrames(settings_); }
+  // Frame m is done, or an automatic view has measured itself converged (or reached its cap).
+  bool converged() const { return stopped_ || next_ > planFrames(settings_); }
+  bool automatic() const { return settings_.frames == 0; }
+  // The last checkpoint's measurement of this view (measured false before the second).
+  const ConvergenceEstimate& estimate() const { return estimate_; }
+  // When the view is expected to be done: m, or for an automatic view the estimate's
+  // expectedFrames (framesDone() once converged).
+  int expectedFrames() const;
   const std::vector<FramePlan>& plan();
   const ProgressiveSettings& settings() const { return settings_; }
 
@@ -66,14 +85,20 @@ class Controller {
   std::vector<LightInfo> lights_;
   std::vector<FramePlan> plan_;
   bool planValid_ = false;
-  bool darkEnvironment_ = false;
+  bool firstLight_ = false;
   int next_ = 1;
   bool inFrame_ = false;
+  bool stopped_ = false;
+  ConvergenceEstimate estimate_;
 
   void restart() {
     next_ = 1;
     inFrame_ = false;
+    stopped_ = false;
+    estimate_ = {};
   }
+  // Frame next_ is complete: counts it and, at an automatic view's checkpoint, measures.
+  Status finishFrame(FrameRenderer& renderer);
 };
 
 }  // namespace penumbra::progressive

@@ -5,25 +5,112 @@
 
 namespace penumbra::progressive {
 
-int directStartFrame(int frames, float directDelay, bool darkEnvironment) {
+int directStartFrame(int frames, float directDelay, bool firstLight) {
   if (frames <= 1) return 1;
-  if (darkEnvironment) return 2;
+  if (firstLight) return 2;
   int start = static_cast<int>(std::floor(static_cast<double>(frames) * directDelay));
   return std::clamp(start, 2, frames);
 }
 
-int automaticLightSamples(int frames, float directDelay, int lightCount) {
-  if (frames <= 1) return 1;
-  const int directFrames = frames - directStartFrame(frames, directDelay) + 1;
-  // About two shadow-map passes per direct frame in all, at most 64 per light (the paper's
-  // Figure 9: banding is gone at 64).
+namespace {
+
+// About two shadow-map passes per direct frame in all, at most 64 per light (the paper's
+// Figure 9: banding is gone at 64).
+int samplesFor(int directFrames, int lightCount) {
   return std::clamp(2 * directFrames / std::max(lightCount, 1), 1, 64);
 }
 
+// An automatic view's blocks: samples at a steady rate (two shadow-map passes a frame in all,
+// at most one every two frames a light, the rate of a 128-frame view's 64), so that the
+// blocks' weights, proportional to their frames, stay proportional to their samples and each
+// checkpoint's estimate has twice the samples of the one before.
+int blockSamples(int directFrames, int lightCount) {
+  const double rate = std::min(2.0 / std::max(lightCount, 1), 0.5);
+  return std::max(1, static_cast<int>(std::lround(directFrames * rate)));
+}
+
+struct Block {
+  int begin, end;   // frames, inclusive
+  int directStart;  // first frame of its non-environment light samples
+};
+
+std::vector<Block> planBlocks(const ProgressiveSettings& s, bool firstLight) {
+  const int m = std::max(1, planFrames(s));
+  if (s.frames > 0 || m <= kFirstBlockFrames) {
+    return {{1, m, directStartFrame(m, s.directDelay, firstLight)}};
+  }
+  std::vector<Block> blocks{
+      {1, kFirstBlockFrames, directStartFrame(kFirstBlockFrames, s.directDelay, firstLight)}};
+  for (int b = kFirstBlockFrames; b < m; b *= 2) blocks.push_back({b + 1, std::min(2 * b, m), b + 1});
+  return blocks;
+}
+
+// One block's light samples: per light n centre-outward points whose weights add up to the
+// block's share of the light (`weight` per light), spread by Algorithm 1.
+void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
+                     const std::vector<LightInfo>& lights, const Block& block, int blockIndex,
+                     bool firstLight) {
+  struct Pending {
+    float rank;  // normalised position in the light's own order, for merging
+    int light;
+    LightSample sample;
+  };
+  const int len = block.end - block.begin + 1;
+  const bool single = planFrames(s) == 1;
+  std::vector<Pending> all;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const bool early = lights[i].fromFrameOne;
+    const int directFrames = block.end - (early ? block.begin : block.directStart) + 1;
+    const int n = single               ? 1
+                  : s.lightSamples > 0 ? s.lightSamples
+                  : s.frames > 0 ? samplesFor(directFrames, static_cast<int>(lights.size()))
+                                 : blockSamples(directFrames, static_cast<int>(lights.size()));
+    // Frame 1's first light took one frame of the first block's weight.
+    const int share = len - (firstLight && !early && block.begin == 1 && !single ? 1 : 0);
+    if (share <= 0) continue;
+    auto pts = lightSamplePoints(n, lights[i].shape, lights[i].aspect,
+                                 s.seed + 7919u * static_cast<uint32_t>(i) +
+                                     104729u * static_cast<uint32_t>(blockIndex));
+    for (int j = 0; j < n; ++j) {
+      LightSample ls;
+      ls.light = static_cast<int>(i);
+      ls.point = pts[static_cast<size_t>(j)];
+      ls.weight = static_cast<float>(share) / static_cast<float>(n);
+      ls.shadowed = lights[i].shape != LightShape::Point;
+      all.push_back({(j + 0.5f) / n, static_cast<int>(i), ls});
+    }
+  }
+  std::stable_sort(all.begin(), all.end(), [](const Pending& a, const Pending& b) {
+    return a.rank < b.rank || (a.rank == b.rank && a.light < b.light);
+  });
+  // Algorithm 1 over [directStart, end]; the environment's own lights over the whole block.
+  for (const bool early : {false, true}) {
+    std::vector<const Pending*> group;
+    for (const Pending& p : all) {
+      if (lights[static_cast<size_t>(p.light)].fromFrameOne == early) group.push_back(&p);
+    }
+    if (group.empty()) continue;
+    const int first = early ? block.begin : block.directStart;
+    const double framesPerSample = (block.end - first + 1) / static_cast<double>(group.size());
+    double index = first;
+    for (const Pending* p : group) {
+      const int frame = std::min(static_cast<int>(std::floor(index + 1e-9)), block.end);
+      plan[static_cast<size_t>(frame - 1)].lights.push_back(p->sample);
+      index += framesPerSample;
+    }
+  }
+}
+
+}  // namespace
+
+int automaticLightSamples(int frames, float directDelay, int lightCount) {
+  if (frames <= 1) return 1;
+  return samplesFor(frames - directStartFrame(frames, directDelay) + 1, lightCount);
+}
+
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
-                                         const std::vector<LightInfo>& lights,
-                                         bool darkEnvironment) {
-  const int m = std::max(1, s.frames);
+                                         const std::vector<LightInfo>& lights, bool firstLight) {
+  const int m = std::max(1, planFrames(s));
   std::vector<FramePlan> plan(static_cast<size_t>(m));
   for (int k = 0; k < m; ++k) {
     FramePlan& f = plan[static_cast<size_t>(k)];
@@ -40,51 +127,21 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
                           seedOffset(s.seed, 5);
     f.skyPoint = sky - glm::floor(sky);
   }
+  const std::vector<Block> blocks = planBlocks(s, firstLight);
+  for (const Block& b : blocks) plan[static_cast<size_t>(b.end - 1)].checkpoint = true;
   if (lights.empty()) return plan;
-
-  // Per light: n_i centre-outward points with weight m / n_i.
-  struct Pending {
-    float rank;  // normalised position in the light's own order, for merging
-    int light;
-    LightSample sample;
-  };
-  std::vector<Pending> all;
-  const int perLight =
-      s.lightSamples > 0 ? s.lightSamples
-                         : automaticLightSamples(m, s.directDelay, static_cast<int>(lights.size()));
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const int n = m == 1 ? 1 : perLight;
-    auto pts = lightSamplePoints(n, lights[i].shape, lights[i].aspect,
-                                 s.seed + 7919u * static_cast<uint32_t>(i));
-    for (int j = 0; j < n; ++j) {
-      LightSample ls;
-      ls.light = static_cast<int>(i);
-      ls.point = pts[static_cast<size_t>(j)];
-      ls.weight = static_cast<float>(m) / static_cast<float>(n);
-      ls.shadowed = lights[i].shape != LightShape::Point;
-      all.push_back({(j + 0.5f) / n, static_cast<int>(i), ls});
+  // First light: every light of the scene from its centre, with weight 1, in frame 1.
+  if (firstLight && m > 1) {
+    for (size_t i = 0; i < lights.size(); ++i) {
+      if (lights[i].fromFrameOne) continue;
+      plan[0].lights.push_back({.light = static_cast<int>(i),
+                                .point = glm::vec2(0.5f),
+                                .weight = 1.0f,
+                                .shadowed = lights[i].shape != LightShape::Point});
     }
   }
-  std::stable_sort(all.begin(), all.end(), [](const Pending& a, const Pending& b) {
-    return a.rank < b.rank || (a.rank == b.rank && a.light < b.light);
-  });
-
-  // Algorithm 1 over frames [start, m]; the environment's own lights over [1, m].
-  const int start = directStartFrame(m, s.directDelay, darkEnvironment);
-  for (const bool early : {false, true}) {
-    std::vector<const Pending*> group;
-    for (const Pending& p : all) {
-      if (lights[static_cast<size_t>(p.light)].fromFrameOne == early) group.push_back(&p);
-    }
-    if (group.empty()) continue;
-    const int first = early ? 1 : start;
-    const double framesPerSample = (m - first + 1) / static_cast<double>(group.size());
-    double index = first;
-    for (const Pending* p : group) {
-      const int frame = std::min(static_cast<int>(std::floor(index + 1e-9)), m);
-      plan[static_cast<size_t>(frame - 1)].lights.push_back(p->sample);
-      index += framesPerSample;
-    }
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    distributeBlock(plan, s, lights, blocks[b], static_cast<int>(b), firstLight);
   }
   return plan;
 }

@@ -1,10 +1,15 @@
-// The sample distributor (Otto et al. 2020, Algorithm 1): decides what each of the m
-// intermediate frames evaluates. The environment term is evaluated in every frame (one
-// occlusion sample each from frame 2, when the prepass exists); direct-light samples start at
-// frame max(2, floor(m * f_d)) and run to frame m; light i gets n_i samples of weight m / n_i,
-// so every light carries its full energy at frame m. All lights' samples are merged in
-// centre-outward rank order and spread with one Algorithm-1 pass, so the number of shadow-map
-// passes per frame differs by at most one between the frames of the direct range.
+// The sample distributor (Otto et al. 2020, Algorithm 1): decides what each intermediate frame
+// evaluates. The environment term is evaluated in every frame (one occlusion sample each from
+// frame 2, when the prepass exists); direct-light samples start at frame max(2, floor(m f_d)).
+// All lights' samples are merged in centre-outward rank order and spread with one Algorithm-1
+// pass, so the number of shadow-map passes per frame differs by at most one between the frames
+// of the direct range.
+//
+// The plan is a sequence of blocks. A fixed m is one block, frames 1..m. An automatic view
+// (frames 0) is nested blocks 1..8, 9..16, 17..32, ... up to maxFrames, each with its own
+// stratified light samples: light i's n_i samples of a block of length len weigh len / n_i,
+// so at every block end (a checkpoint) each light carries its full energy and the running mean
+// is a complete estimate, wherever an automatic view stops.
 #pragma once
 
 #include <vector>
@@ -23,16 +28,22 @@ struct LightInfo {
   bool fromFrameOne = false;
 };
 
+// An automatic view's first block; its later blocks double.
+inline constexpr int kFirstBlockFrames = 8;
+
 // Samples per light when ProgressiveSettings::lightSamples is 0.
 int automaticLightSamples(int frames, float directDelay, int lightCount);
-// First frame (1-based) that carries direct-light samples. The delay keeps navigation under
-// environment light free of flicker; with a dark environment there is nothing to show before
-// direct light, so it starts at frame 2.
-int directStartFrame(int frames, float directDelay, bool darkEnvironment = false);
+// First frame (1-based) that carries direct-light samples of a block of `frames` frames. The
+// delay keeps navigation under environment light free of flicker; where the scene's own lights
+// carry it (firstLight) they start at frame 2, after frame 1's first light.
+int directStartFrame(int frames, float directDelay, bool firstLight = false);
 
-// The whole plan: element k is frame k + 1.
+// The whole plan, up to planFrames(settings): element k is frame k + 1. firstLight: the
+// scene's own lights carry it (Renderer: the environment would give frame 1 less than half of
+// the light), so frame 1 evaluates every light from its centre with weight 1, and the rest of
+// the first block's samples share what remains of its weight.
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& settings,
                                          const std::vector<LightInfo>& lights,
-                                         bool darkEnvironment = false);
+                                         bool firstLight = false);
 
 }  // namespace penumbra::progressive

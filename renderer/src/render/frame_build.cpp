@@ -27,6 +27,7 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
     prepassValid = false;
     probeCacheFrame = -1;
     lightCacheWritten = 0;
+    checkpointFrame = 0;
   }
   auto& units = pending.units;
   const int k = pending.tiles;
@@ -105,7 +106,8 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
       cachedLights.clear();
     }
   }
-  const int m = settings.progressive.frames;
+  // An automatic view sizes the cache as a view of 128 frames (its stopping point is unknown).
+  const int m = settings.progressive.frames > 0 ? settings.progressive.frames : 128;
   const bool writeLightCache =
       !cachedLights.empty() && progressive::writesLightCache(plan.frame, lightCacheWritten, m);
   const bool readLightCache =

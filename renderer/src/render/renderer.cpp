@@ -22,7 +22,7 @@ Status Renderer::setScene(const Scene& scene) {
   impl_->scene = std::move(*gs);
   if (impl_->pointShadows) impl_->pointShadows->invalidate();
   impl_->sceneLights = scene.lights;
-  impl_->setLights();
+  impl_->setLights();  // after the scene: first light weighs the lights by its bounds
   impl_->probeBox = scene.probeBox;
   impl_->probeCounts = scene.probeCounts;
   PN_TRY(impl_->layoutProbes());
@@ -104,6 +104,18 @@ int Renderer::framesDone() const {
 }
 int Renderer::totalFrames() const {
   return impl_->controller.totalFrames();
+}
+ConvergenceInfo Renderer::convergence() const {
+  const auto& c = impl_->controller;
+  const auto& e = c.estimate();
+  return {.automatic = c.automatic(),
+          .measured = e.measured,
+          .converged = e.converged,
+          .frame = e.frame,
+          .error = e.error,
+          .tileError = e.tileError,
+          .convergedTiles = e.convergedTiles,
+          .expectedFrames = c.expectedFrames()};
 }
 const FrameStats& Renderer::lastFrame() const {
   return impl_->stats;

@@ -30,6 +30,7 @@
 #include "passes/targets.h"
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
+#include "progressive/first_light.h"
 #include "progressive/light_cache.h"
 #include "render/light_samples.h"
 
@@ -57,6 +58,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::OcclusionPass> occlusionPass;
   std::optional<passes::FullscreenPass> tonemap;
+  std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
+  int checkpointFrame = 0;  // the frame whose mean targets->checkpoint holds (0: none this view)
   std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
   Bounds probeBox;                            // the scene file's, else the scene's bounds
   glm::ivec3 probeCounts{0};                  // the scene file's (0: from the density)
@@ -100,10 +103,16 @@ struct Renderer::Impl : progressive::FrameRenderer {
     gl::Texture2D::unbind(0);
   }
 
-  // With a black environment nothing is visible before direct light: start it at frame 2.
+  // First light (distributeSamples): where the environment alone would give frame 1 less than
+  // half of the scene's light (progressive::environmentShare), frame 1 evaluates the scene's lights.
   void updateDarkness() {
-    controller.setDarkEnvironment(environmentMean * settings.environmentIntensity < 1e-6f);
+    controller.setFirstLight(
+        progressive::environmentShare(sceneLights, environmentMean * settings.environmentIntensity,
+                                 scene ? scene->bounds() : Bounds{}) < 0.5f);
   }
+
+  // FrameRenderer: the tiles' RMS change since the last checkpoint (render/convergence.cpp).
+  Result<std::vector<float>> measureTiles(int frame) override;
 
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
@@ -201,6 +210,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       infos.push_back(info);
     }
     controller.setLights(infos);
+    updateDarkness();
   }
 
   // The probe grid over the scene's (or the scene file's) box; empty when the volume is off.
