@@ -93,7 +93,7 @@ TEST_F(FirstLightGLTest, AnAutomaticViewStopsWhenItsMeasuredErrorIsReached) {
   ASSERT_TRUE(stopped.ok());
   auto ref = cornell({{"frames", "auto"},
                       {"maxFrames", std::to_string(4 * n)},
-                      {"convergenceThreshold", "0.001"}});
+                      {"convergenceThreshold", "0.125"}});
   while (!ref->converged()) ASSERT_TRUE(ref->step().ok());
   auto longer = ref->readDisplay();
   ASSERT_TRUE(longer.ok());

@@ -218,9 +218,10 @@ TEST_F(FrameSplitGLTest, TileCountIsClampedToTheImageHeight) {
   EXPECT_EQ(r->frameTiles(), kMaxFrameTiles);
   auto p = r->stepPart();
   ASSERT_TRUE(p.ok());
-  // Frame 1 is environment only: lighting + accumulation, one band per row at most (the probe
-  // volume captures nothing before the first image after a reset).
-  EXPECT_EQ(p->parts, 5);
+  // Frame 1 (first light: the box has no environment): the lamp's shadow map, then lighting +
+  // accumulation, one band per row at most (the probe volume captures nothing before the
+  // first image after a reset).
+  EXPECT_EQ(p->parts, 6);
   while (!p->done) p = r->stepPart();
   // Unsplit, one part is the whole frame.
   r->setFrameTiles(0);

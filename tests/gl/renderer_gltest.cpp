@@ -186,7 +186,8 @@ TEST_F(RendererGLTest, ShowroomMatchesGolden) {
 
 TEST_F(RendererGLTest, FrameOneIsEnvironmentOnlyAndShadowPassesFollowThePlan) {
   Loaded l = loadCornell(32, 32);
-  l.env = uniformEnvironment(glm::vec3(0.2f));  // a lit environment: the f_d delay applies
+  // An environment that carries the scene (no first light): the f_d delay applies.
+  l.env = uniformEnvironment(glm::vec3(20.0f));
   {
     // Sky shadows: one shadow map a frame from frame 2 (occlusion on), none in frame 1.
     Loaded withSky = l;

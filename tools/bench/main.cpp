@@ -57,13 +57,13 @@ bool gLightCache = true;         // --no-light-cache turns it off
 bool gQuarterOcclusion = true;   // --full-occlusion turns it off
 bool gFusedAccumulation = true;  // --separate-accumulation turns it off
 
-Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool breakdown,
+Result<Row> run(const std::string& sceneFile, int w, int h, const std::string& frames, bool breakdown,
                 bool probeCache, bool probeVolume = true) {
   JobRequest request;
   request.scenePath = sceneFile;
   request.settings = {{"width", std::to_string(w)},
                       {"height", std::to_string(h)},
-                      {"frames", std::to_string(frames)}};
+                      {"frames", frames}};
   if (!probeVolume) request.settings.push_back({"probeVolume", "false"});
   for (const auto& kv : gExtraSettings) request.settings.push_back(kv);
   auto job = RenderJob::load(request);
@@ -97,7 +97,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
   Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
           w,
           h,
-          frames,
+          0,
           0,
           0,
           0,
@@ -149,7 +149,8 @@ Result<Row> run(const std::string& sceneFile, int w, int h, int frames, bool bre
     row.toneMapMs = tms[tms.size() / 2];
   }
   row.firstMs = ms(t0, t1);
-  row.perFrameMs = ms(t1, t2) / std::max(frames - 1, 1);
+  row.frames = (*r)->framesDone();  // m, or where an automatic view stopped
+  row.perFrameMs = ms(t1, t2) / std::max(row.frames - 1, 1);
   row.totalS = ms(t0, t2) / 1000.0;
   row.readBackMs = ms(t2, t3);
   row.probes = (*r)->probeVolumeInfo();
@@ -166,7 +167,7 @@ bool parseSize(const std::string& size, int& w, int& h) {
 // The probe volume's per-frame cost: runs with and without it, alternating (so a machine's
 // drifting load hits both alike), and the medians of their per-frame times.
 int giCost(const std::vector<std::string>& scenes, const std::vector<std::string>& sizes,
-           int frames, int rounds, bool probeCache) {
+           const std::string& frames, int rounds, bool probeCache) {
   std::printf("| scene | size | m | rounds | per frame without (ms) | with (ms) | added |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   const auto median = [](std::vector<double> v) {
@@ -190,8 +191,9 @@ int giCost(const std::vector<std::string>& scenes, const std::vector<std::string
         }
       }
       const double a = median(without), b = median(with);
-      std::printf("| %s | %dx%d | %d | %d | %.1f | %.1f | %+.1f %% |\n",
-                  scene.substr(scene.find_last_of('/') + 1).c_str(), w, h, frames, rounds, a, b,
+      std::printf("| %s | %dx%d | %s | %d | %.1f | %.1f | %+.1f %% |\n",
+                  scene.substr(scene.find_last_of('/') + 1).c_str(), w, h, frames.c_str(), rounds,
+                  a, b,
                   100.0 * (b - a) / a);
       std::fflush(stdout);
     }
@@ -206,10 +208,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenes = {"assets/cornell_box/cornell_box.json",
                                      "assets/dense/dense.json"};
   std::vector<std::string> sizes = {"1280x720", "1920x1080"};
-  int frames = 128;
+  std::string frames = "128";
   app.add_option("--scene", scenes, "scene files (repeatable)");
   app.add_option("--size", sizes, "resolutions WxH (repeatable)");
-  app.add_option("--frames", frames, "intermediate frames m");
+  app.add_option("--frames", frames,
+                 "intermediate frames m, or auto: until the image is measured converged (the "
+                 "table then times the converged picture)");
   bool breakdown = false;
   app.add_flag("--breakdown", breakdown,
                "also time every pass (waits for the GPU after each, so totals grow a little)");
@@ -254,8 +258,8 @@ int main(int argc, char** argv) {
   std::printf("# %s\n", (*ctx)->description().c_str());
   if (giRounds > 0) return giCost(scenes, sizes, frames, giRounds, !noProbeCache);
   std::printf(
-      "| scene | triangles | size | m | preview (ms) | first frame (ms) | per frame (ms) | "
-      "time to m (s) | read-back (ms) |\n");
+      "| scene | triangles | size | frames | preview (ms) | first frame (ms) | per frame (ms) | "
+      "time to last frame (s) | read-back (ms) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& scene : scenes) {
     for (const auto& size : sizes) {
@@ -267,10 +271,10 @@ int main(int argc, char** argv) {
         return 1;
       }
       std::printf("| %s | %zu | %dx%d | %d | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
-                  row->scene.c_str(), row->triangles, w, h, frames, row->previewMs, row->firstMs,
+                  row->scene.c_str(), row->triangles, w, h, row->frames, row->previewMs, row->firstMs,
                   row->perFrameMs, row->totalS, row->readBackMs);
       if (breakdown) {
-        const double n = frames;
+        const double n = row->frames;
         std::printf(
             "|   per frame (ms): prepass %.1f, occlusion rays %.1f, shadow maps %.1f (%d passes), "
             "lighting %.1f (%d "

@@ -197,8 +197,8 @@ int main(int argc, char** argv) {
                     c.converged ? "converged" : "stopped at maxFrames", c.error, c.tileError);
       how = buf;
     }
-    std::fprintf(stderr, "penumbra-render: %d frames%s at %dx%d in %.2f s -> %s\n",
-                 r.framesDone(), how.c_str(), s.width, s.height, seconds, outPath.c_str());
+    std::fprintf(stderr, "penumbra-render: %d frames at %dx%d in %.2f s -> %s%s\n",
+                 r.framesDone(), s.width, s.height, seconds, outPath.c_str(), how.c_str());
   }
   return 0;
 }

@@ -11,8 +11,14 @@ export type ToneMapper = 'pbr-neutral' | 'aces' | 'reinhard' | 'none';
 
 /** Everything setSettings() accepts; all optional. */
 export interface Settings {
-  /** m, the number of intermediate frames to accumulate (1..4096). */
-  frames?: number;
+  /** m, the number of intermediate frames to accumulate (1..4096), or "auto" (the default):
+   *  until the displayed image is measured converged, at most maxFrames. */
+  frames?: number | 'auto';
+  /** The most frames an automatic view draws (16..4096, default 1024). */
+  maxFrames?: number;
+  /** Automatic views stop when the displayed image's estimated RMS error is under this many
+   *  8-bit steps and 99 % of its 8x8 tiles are under four times it (default 1). */
+  convergenceThreshold?: number;
   /** f_d: direct-light samples start at frame floor(m * fd) (0..1). */
   fd?: number;
   /** d_occ, the screen-space occlusion distance in scene units (metres). */
@@ -149,6 +155,8 @@ export interface PixelsResult {
 
 export interface ViewerState {
   frame: number;
+  /** m, or an automatic view's expected frames (from its last measured checkpoint; the cap
+   *  before one): (total - frame) x frameMs is the time left. */
   total: number;
   converged: boolean;
   /** Milliseconds of the last intermediate frame (its parts' time), and of the last frame 1. */

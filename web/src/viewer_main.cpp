@@ -506,8 +506,9 @@ EMSCRIPTEN_KEEPALIVE const char* pv_read(int display) {
 EMSCRIPTEN_KEEPALIVE int pv_frames_done() {
   return gViewer && gViewer->renderer ? gViewer->renderer->framesDone() : 0;
 }
+// m, or an automatic view's expected frames (its measured estimate; its frame once converged).
 EMSCRIPTEN_KEEPALIVE int pv_total_frames() {
-  return gViewer && gViewer->renderer ? gViewer->renderer->totalFrames() : 0;
+  return gViewer && gViewer->renderer ? gViewer->renderer->convergence().expectedFrames : 0;
 }
 EMSCRIPTEN_KEEPALIVE int pv_converged() {
   return gViewer && gViewer->renderer && gViewer->renderer->converged() ? 1 : 0;

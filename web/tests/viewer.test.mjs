@@ -45,9 +45,8 @@ const HALF_MAX_TOL = 0.1;
 const GI_BLOCK_MEAN_MIN = 0.01;
 
 // The golden image, used when build/tools/render/penumbra-render is not built (set
-// PENUMBRA_RENDER to use another build). Made from the renderer as of the probe volume's
-// 2x2-block depth moments (issue #14; probe
-// volume on, the default) with:
+// PENUMBRA_RENDER to use another build). Made from the renderer as of first light (frame 1
+// lit by the Cornell box's own light; probe volume on, the default) with:
 //   MESA_GLES_VERSION_OVERRIDE=3.0 build/tools/render/penumbra-render \
 //     assets/cornell_box/cornell_box.json -o web/tests/golden/cornell_160_f16.png \
 //     --size 160x160 --frames 16 -q

@@ -53,13 +53,17 @@ function renderProgress(viewer) {
                  ` · ${s.frameMs.toFixed(1)} ms/frame` +
                  (s.split > 1 ? ` in ${s.parts} parts` : ` · ${s.stepsPerTick}/tick`)];
   if (s.converged) lines.push(`converged in ${(s.convergedMs / 1000).toFixed(2)} s`);
+  // The total is an automatic view's expected frames: an estimate of the time left.
+  else if (s.total > s.frame && s.frameMs > 0) {
+    lines.push(`about ${(((s.total - s.frame) * s.frameMs) / 1000).toFixed(0)} s left`);
+  }
   $('detail').textContent = lines.join('\n');
 }
 
 // ---- settings panel ---------------------------------------------------------------------------
 
 const form = $('panel');
-const numberFields = ['frames', 'fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
+const numberFields = ['fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
                       'resolutionScale', 'maxSplit', 'sunThreshold'];
 
 function fillPanel(settings) {
@@ -80,6 +84,8 @@ function wirePanel(viewer) {
     if (!el.name || el.tagName === 'OUTPUT') return;
     let value = el.type === 'checkbox' ? el.checked : el.value;
     if (numberFields.includes(el.name)) value = Number(value);
+    // frames: a number, or "auto" (also when left empty): until measured converged.
+    if (el.name === 'frames') value = /^\s*(auto)?\s*$/i.test(value) ? 'auto' : Number(value);
     if (Number.isNaN(value)) return;
     viewer.setSettings({ [el.name]: value }).then(fillPanel, (e) => {
       showError(e);

@@ -92,7 +92,7 @@ const SettingInfo kSchema[] = {
     {"maxFrames", "progressive", "maxFrames", "--max-frames", SettingType::Int, 16, 4096, false,
      false, false, true, "the most frames an auto view draws", PN_FIELD(progressive.maxFrames, int)},
     {"convergenceThreshold", "progressive", "convergenceThreshold", "--convergence-threshold",
-     SettingType::Float, 0, 255, true, false, false, true,
+     SettingType::Float, 0.125, 255, false, false, false, true,
      "auto frames: converged when the displayed image changed by less than this many 8-bit "
      "steps (RMS) since the last checkpoint and 99 % of its 8x8 tiles by less than 4 times it",
      PN_FIELD(progressive.convergenceThreshold, float)},
