@@ -121,6 +121,12 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
   for (const LightSample& s : pending.plan.lights) {
     if (s.light < 0 || s.light >= static_cast<int>(lights.size())) continue;
     const Light& l = lights[static_cast<size_t>(s.light)];
+    // Frame 1 becomes the mean without the accumulation's guard against non-finite samples:
+    // a light that can only give NaN (first light) is left out of it.
+    if (plan.frame == 1 && !(std::isfinite(l.intensity) && std::isfinite(l.color.r) &&
+                             std::isfinite(l.color.g) && std::isfinite(l.color.b))) {
+      continue;
+    }
     if (l.isArea()) {
       area.push_back(&s);
     } else {
