@@ -160,6 +160,16 @@ Mesh sphereMesh(glm::vec3 c, float r, int material, int segments) {
   return m;
 }
 
+double meanRgb(const Image& image) {
+  double sum = 0.0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      for (int c = 0; c < 3; ++c) sum += image.pixel(x, y)[c];
+    }
+  }
+  return sum / (3.0 * image.width * image.height);
+}
+
 double rmse(const Image& a, const Image& b) {
   double sum = 0.0;
   size_t n = 0;

@@ -39,6 +39,8 @@ Result<Image> renderRadiance(const Scene& scene, const PackedEnvironment& env, c
 namespace penumbra::test {
 // A UV sphere of radius r centred at c.
 Mesh sphereMesh(glm::vec3 c, float r, int material, int segments = 48);
+// Mean over RGB and all pixels.
+double meanRgb(const Image& image);
 // RMSE over RGB of two images of equal size.
 double rmse(const Image& a, const Image& b);
 // Radiance (mean of RGB) of the image where world point p projects with viewProj: the pixel it

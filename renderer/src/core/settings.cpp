@@ -86,8 +86,8 @@ const SettingInfo kSchema[] = {
      PN_FIELD(backgroundBlur, float)},
     {"frames", "progressive", "frames", "--frames", SettingType::Int, 0, 4096, false, false, false,
      true,
-     "intermediate frames m, or auto (0): until the displayed image is measured converged, at "
-     "most maxFrames",
+     "intermediate frames m, or auto (the default): until the displayed image is measured "
+     "converged, at most maxFrames",
      PN_FIELD(progressive.frames, int), true},
     {"maxFrames", "progressive", "maxFrames", "--max-frames", SettingType::Int, 16, 4096, false,
      false, false, true, "the most frames an auto view draws", PN_FIELD(progressive.maxFrames, int)},

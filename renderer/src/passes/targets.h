@@ -50,8 +50,8 @@ struct RenderTargets {
   ColorTarget behind;
 
   // An automatic view's convergence measure (progressive/convergence.h): the mean at the last
-  // checkpoint (accumulation format) and the tiles' changes, a texel a tile of `tile` pixels
-  // (RGBA32F where renderable, else the accumulation format). Made on first use.
+  // checkpoint and the tiles' changes, a texel a tile of `tile` pixels, both in the
+  // accumulation format. Made on first use.
   ColorTarget checkpoint;
   ColorTarget convergenceTiles;
   int tilesWidth(int tile) const { return (width + tile - 1) / tile; }

@@ -46,7 +46,7 @@ std::vector<Block> planBlocks(const ProgressiveSettings& s, bool firstLight) {
 }
 
 // One block's light samples: per light n centre-outward points whose weights add up to the
-// block's share of the light (`weight` per light), spread by Algorithm 1.
+// block's frames (less frame 1's first light in the first block), spread by Algorithm 1.
 void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
                      const std::vector<LightInfo>& lights, const Block& block, int blockIndex,
                      bool firstLight) {
@@ -102,11 +102,6 @@ void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
 }
 
 }  // namespace
-
-int automaticLightSamples(int frames, float directDelay, int lightCount) {
-  if (frames <= 1) return 1;
-  return samplesFor(frames - directStartFrame(frames, directDelay) + 1, lightCount);
-}
 
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
                                          const std::vector<LightInfo>& lights, bool firstLight) {

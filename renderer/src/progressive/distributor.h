@@ -31,8 +31,6 @@ struct LightInfo {
 // An automatic view's first block; its later blocks double.
 inline constexpr int kFirstBlockFrames = 8;
 
-// Samples per light when ProgressiveSettings::lightSamples is 0.
-int automaticLightSamples(int frames, float directDelay, int lightCount);
 // First frame (1-based) that carries direct-light samples of a block of `frames` frames. The
 // delay keeps navigation under environment light free of flicker; where the scene's own lights
 // carry it (firstLight) they start at frame 2, after frame 1's first light.

@@ -42,8 +42,7 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   impl_->sky = environment.specular.mipCount() > 0
                    ? ibl::SkyDistribution::build(environment.specular, 16, /*upperOnly=*/true)
                    : ibl::SkyDistribution();
-  impl_->setLights();
-  impl_->updateDarkness();
+  impl_->setLights();  // also decides first light, which weighs the environment's mean
   if (impl_->probes) impl_->probes->clear();
   impl_->controller.invalidate();
   return {};

@@ -105,7 +105,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   // First light (distributeSamples): where the environment alone would give frame 1 less than
   // half of the scene's light (progressive::environmentShare), frame 1 evaluates the scene's lights.
-  void updateDarkness() {
+  void updateFirstLight() {
     controller.setFirstLight(
         progressive::environmentShare(sceneLights, environmentMean * settings.environmentIntensity,
                                  scene ? scene->bounds() : Bounds{}) < 0.5f);
@@ -188,7 +188,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
     } else if (restartNeeded && probes) {
       probes->clear();  // the light the volume holds changed
     }
-    updateDarkness();
+    updateFirstLight();
     if (resize || restartNeeded) controller.invalidate();
     return {};
   }
@@ -210,7 +210,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       infos.push_back(info);
     }
     controller.setLights(infos);
-    updateDarkness();
+    updateFirstLight();
   }
 
   // The probe grid over the scene's (or the scene file's) box; empty when the volume is off.
