@@ -205,7 +205,8 @@ async function main() {
   };
   // adaptive=0: the still image keeps the canvas's full size (tests comparing exact sizes).
   if (query.get('adaptive')) options.adaptiveResolution = query.get('adaptive') !== '0';
-  const overrides = { frames: numberParam('frames'), fd: numberParam('fd'),
+  const overrides = { frames: query.get('frames') === 'auto' ? 'auto' : numberParam('frames'),
+                      fd: numberParam('fd'),
                       exposure: numberParam('exposure'),
                       occlusionDistance: numberParam('occlusionDistance') };
   if (query.get('tonemap')) overrides.toneMapper = query.get('tonemap');
