@@ -1,8 +1,11 @@
 // First light and measured convergence end to end (issue: a lit first picture, a picture that
 // knows when it is done): frame 1 of a scene lit by its own lights shows them, frame 1 of a
 // scene the environment carries stays environment-only, and an automatic view stops by
-// itself with an error estimate that holds against a longer render.
+// itself with an error estimate that holds against a longer render, leaving the tiles it has
+// measured converged as they are (adaptive frames).
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <gtest/gtest.h>
 
@@ -19,7 +22,8 @@ std::unique_ptr<Renderer> cornell(std::vector<std::pair<std::string, std::string
                                   std::optional<EnvironmentSpec> env = std::nullopt) {
   JobRequest req;
   req.scenePath = sourceDir() + "/assets/cornell_box/cornell_box.json";
-  settings.insert(settings.end(), {{"width", "48"}, {"height", "48"}, {"shadowMapSize", "256"}});
+  // Defaults first: a test's own size wins.
+  settings.insert(settings.begin(), {{"width", "48"}, {"height", "48"}, {"shadowMapSize", "256"}});
   req.settings = std::move(settings);
   req.environment = env;
   auto job = RenderJob::load(req);
@@ -56,8 +60,8 @@ TEST_F(FirstLightGLTest, FrameOneOfASceneLitByItsOwnLightsShowsThem) {
 TEST_F(FirstLightGLTest, FrameOneStaysEnvironmentOnlyWhereTheEnvironmentCarriesTheScene) {
   // The same box under a bright uniform sky: the environment gives most of the light, so
   // frame 1 is the paper's cheap environment-only frame.
-  auto r = cornell({{"frames", "128"}},
-                   EnvironmentSpec{.kind = EnvironmentSpec::Kind::Uniform, .radiance = glm::vec3(20.0f)});
+  auto r = cornell({{"frames", "128"}}, EnvironmentSpec{.kind = EnvironmentSpec::Kind::Uniform,
+                                                        .radiance = glm::vec3(20.0f)});
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->step().ok());
   EXPECT_EQ(r->lastFrame().shadowPasses, 0);
@@ -90,6 +94,87 @@ TEST_F(FirstLightGLTest, AnAutomaticViewStopsWhenItsMeasuredErrorIsReached) {
   const double actual = rmse(*stopped, *longer) * 255.0;
   std::printf("rms against %d frames: %.3f 8-bit steps\n", 4 * n, actual);
   EXPECT_LT(actual, 2.0 * c.error + 0.5);
+}
+
+// The 8x8 tiles (the convergence measure's) whose linear radiance is bit for bit the same in
+// both images: tiles no longer drawn, or drawing a constant (an emitter).
+int unchangedTiles(const Image& a, const Image& b) {
+  constexpr int kTile = 8;
+  int count = 0;
+  for (int ty = 0; ty * kTile < a.height; ++ty) {
+    for (int tx = 0; tx * kTile < a.width; ++tx) {
+      bool same = true;
+      for (int y = ty * kTile; y < std::min(a.height, (ty + 1) * kTile); ++y) {
+        for (int x = tx * kTile; x < std::min(a.width, (tx + 1) * kTile); ++x) {
+          for (int c = 0; c < 3; ++c) same = same && a.pixel(x, y)[c] == b.pixel(x, y)[c];
+        }
+      }
+      count += same ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+TEST_F(FirstLightGLTest, AConvergedTileIsSkippedWithoutChangingTheImage) {
+  // 96x96: 12x12 tiles. A loose threshold, so that the flat walls' tiles converge long before
+  // the penumbrae do.
+  const std::vector<std::pair<std::string, std::string>> settings{{"frames", "auto"},
+                                                                  {"maxFrames", "1024"},
+                                                                  {"convergenceThreshold", "2"},
+                                                                  {"width", "96"},
+                                                                  {"height", "96"}};
+  constexpr int kTiles = 144;
+  auto r = cornell(settings);
+  ASSERT_TRUE(r);
+  // Up to the first checkpoint that skips tiles.
+  while (!r->converged() && r->convergence().skippedTiles == 0.0) ASSERT_TRUE(r->step().ok());
+  ASSERT_FALSE(r->converged()) << "the view converged before any tile was skipped";
+  const int skippedFirst = static_cast<int>(std::lround(r->convergence().skippedTiles * kTiles));
+  const int at = r->framesDone();
+  auto frozen = r->readRadiance();
+  ASSERT_TRUE(frozen.ok());
+  ASSERT_EQ(frozen->width * frozen->height, kTiles * 64);
+  while (!r->converged()) ASSERT_TRUE(r->step().ok());
+  const int n = r->framesDone();
+  const int skippedLast = static_cast<int>(std::lround(r->convergence().skippedTiles * kTiles));
+  auto last = r->readRadiance();
+  auto lastDisplay = r->readDisplay();
+  ASSERT_TRUE(last.ok() && lastDisplay.ok());
+
+  // The same view without skipping, over the same frames.
+  auto settingsOff = settings;
+  settingsOff.push_back({"skipConvergedTiles", "false"});
+  auto off = cornell(settingsOff);
+  ASSERT_TRUE(off);
+  std::optional<Image> offFrozen;
+  while (off->framesDone() < n) {
+    ASSERT_FALSE(off->converged());
+    ASSERT_TRUE(off->step().ok());
+    if (off->framesDone() == at) offFrozen = *off->readRadiance();
+  }
+  EXPECT_EQ(off->convergence().skippedTiles, 0.0);
+  auto offLast = off->readRadiance();
+  auto offDisplay = off->readDisplay();
+  ASSERT_TRUE(offFrozen && offLast.ok() && offDisplay.ok());
+
+  const int stillSkip = unchangedTiles(*frozen, *last);
+  const int stillFull = unchangedTiles(*offFrozen, *offLast);
+  std::printf(
+      "tiles skipped at frame %d: %d, at frame %d: %d of %d; tiles unchanged from %d to "
+      "%d: %d skipping, %d not\n",
+      at, skippedFirst, n, skippedLast, kTiles, at, n, stillSkip, stillFull);
+  EXPECT_GT(n, at) << "frames went on after the first tiles were skipped";
+  // The tiles skipped at `at` are left bit for bit as they were, and only skipped tiles are:
+  // the rest still change as without skipping.
+  EXPECT_GE(stillSkip, stillFull + skippedFirst);
+  EXPECT_LE(stillSkip, stillFull + skippedLast);
+  // The images agree to within the threshold on average (mean absolute difference under 0.4
+  // 8-bit steps) and no pixel is far off (8 steps: two views' noise at a penumbra). A diff
+  // image on failure.
+  std::printf("skipping vs not, at frame %d: RMS %.3f 8-bit steps\n", n,
+              rmse(*lastDisplay, *offDisplay) * 255.0);
+  EXPECT_TRUE(matchesImage(*lastDisplay, *offDisplay, {.maxAbs = 8.0 / 255, .meanAbs = 0.4 / 255},
+                           "adaptive_frames_skip_vs_full"));
 }
 
 }  // namespace

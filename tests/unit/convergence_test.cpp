@@ -84,8 +84,8 @@ std::vector<float> tileRms(const std::vector<double>& a, const std::vector<doubl
       double sum = 0.0;
       for (int y = 0; y < kConvergenceTile; ++y) {
         for (int x = 0; x < kConvergenceTile; ++x) {
-          const size_t i = static_cast<size_t>((ty * kConvergenceTile + y) * w +
-                                               tx * kConvergenceTile + x);
+          const size_t i =
+              static_cast<size_t>((ty * kConvergenceTile + y) * w + tx * kConvergenceTile + x);
           sum += (a[i] - b[i]) * (a[i] - b[i]);
         }
       }
@@ -149,12 +149,87 @@ class HalvingRenderer : public FrameRenderer {
  public:
   std::vector<int> measured;
   Status renderFrame(const FramePlan&) override { return {}; }
-  Result<std::vector<float>> measureTiles(int frame) override {
+  Result<TileChanges> measureTiles(int frame) override {
     measured.push_back(frame);
-    if (measured.size() == 1) return std::vector<float>{};
-    return std::vector<float>(64, static_cast<float>(64.0 / frame));
+    if (measured.size() == 1) return TileChanges{};
+    const float change = static_cast<float>(64.0 / frame);
+    return TileChanges{std::vector<float>(64, change), std::vector<float>(64, 2.0f * change)};
   }
 };
+
+TEST(TileSkipTest, ConvergedTilesAreSkippedFromFrame32AndKeepTheirLastChange) {
+  // Four tiles: one quiet, one quiet but with a pixel still jumping, one noisy, one NaN.
+  const TileChanges c{{0.2f, 0.2f, 3.0f, NAN}, {0.5f, 2.5f, 9.0f, NAN}};
+  TileSkip skip;
+  EXPECT_FALSE(skip.update(c, 1.0, 16)) << "not before kSkipFromFrame";
+  EXPECT_EQ(skip.skipped(), 0);
+  EXPECT_TRUE(skip.update(c, 1.0, 32));
+  EXPECT_EQ(skip.mask(), (std::vector<uint8_t>{1, 0, 0, 0}));
+  EXPECT_EQ(skip.skipped(), 1);
+  // A skipped tile's change is zero from now on; its frozen change stands in for it.
+  const std::vector<float> later{0.0f, 0.1f, 2.0f, 1.0f};
+  EXPECT_EQ(skip.effective(later), (std::vector<float>{0.2f, 0.1f, 2.0f, 1.0f}));
+  // Nothing new: no update. Then the second tile quietens and joins; the first stays skipped.
+  EXPECT_FALSE(skip.update({{0.0f, 0.3f, 3.0f, 1.0f}, {0.0f, 2.5f, 9.0f, 1.0f}}, 1.0, 64));
+  EXPECT_TRUE(skip.update({{0.0f, 0.3f, 3.0f, 1.0f}, {0.0f, 1.0f, 9.0f, 1.0f}}, 1.0, 128));
+  EXPECT_EQ(skip.mask(), (std::vector<uint8_t>{1, 1, 0, 0}));
+  EXPECT_EQ(skip.effective(std::vector<float>(4, 0.0f)), (std::vector<float>{0.2f, 0.3f, 0, 0}));
+  // The bound scales with the threshold.
+  TileSkip loose;
+  EXPECT_TRUE(loose.update(c, 8.0, 32));
+  EXPECT_EQ(loose.mask(), (std::vector<uint8_t>{1, 1, 1, 0}));
+  skip.reset();
+  EXPECT_TRUE(skip.mask().empty());
+}
+
+// Half the tiles are quiet from frame 32; the rest halve their change at every checkpoint.
+class HalfQuietRenderer : public FrameRenderer {
+ public:
+  std::vector<std::vector<uint8_t>> masks;
+  Status renderFrame(const FramePlan&) override { return {}; }
+  Result<TileChanges> measureTiles(int frame) override {
+    if (frame == kFirstBlockFrames) return TileChanges{};
+    TileChanges c;
+    for (int i = 0; i < 64; ++i) {
+      const bool quiet = i % 2 == 0 && frame >= 32;
+      const bool skipped = !masks.empty() && masks.back()[static_cast<size_t>(i)];
+      const float v = skipped ? 0.0f : quiet ? 0.45f : static_cast<float>(90.0 / frame);
+      c.rms.push_back(v);
+      c.max.push_back(2.0f * v);
+    }
+    return c;
+  }
+  Status skipTiles(std::span<const uint8_t> mask) override {
+    masks.emplace_back(mask.begin(), mask.end());
+    return {};
+  }
+};
+
+TEST(TileSkipTest, TheControllerSkipsConvergedTilesAndCountsThemAtTheirLastChange) {
+  ProgressiveSettings s;
+  s.frames = 0;
+  s.convergenceThreshold = 1.0f;
+  Controller c(s);
+  HalfQuietRenderer r;
+  while (!c.converged()) ASSERT_TRUE(c.step(r).ok());
+  ASSERT_EQ(r.masks.size(), 1u) << "the quiet half, once";
+  for (size_t i = 0; i < 64; ++i) EXPECT_EQ(r.masks[0][i], i % 2 == 0 ? 1 : 0) << i;
+  EXPECT_DOUBLE_EQ(c.estimate().skippedTiles, 0.5);
+  // The rest change by 90 / N: the RMS over the image with the skipped half at its frozen 0.45
+  // is under 1 first at 128 (at 64 it is 1.04; counted as 0 it would have stopped there).
+  EXPECT_EQ(c.framesDone(), 128);
+  EXPECT_NEAR(c.estimate().error, std::sqrt((0.45 * 0.45 + (90.0 / 128) * (90.0 / 128)) / 2.0),
+              1e-6);
+  // Off: no mask is ever asked for; a restart forgets the mask.
+  EXPECT_EQ(c.skippedTiles().skipped(), 32);
+  c.invalidate();
+  EXPECT_EQ(c.skippedTiles().skipped(), 0);
+  s.skipConvergedTiles = false;
+  c.setSettings(s);
+  r.masks.clear();
+  while (!c.converged()) ASSERT_TRUE(c.step(r).ok());
+  EXPECT_TRUE(r.masks.empty());
+}
 
 TEST(ConvergenceTest, AnAutomaticViewStopsAtTheCheckpointThatConverges) {
   ProgressiveSettings s;

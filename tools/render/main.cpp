@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   if (auto st = job->applyTo(r); !st) return fail(st.message());
 
   tools::ProgressBar bar("rendering", r.convergence().expectedFrames,
-                        !quiet && isatty(STDERR_FILENO));
+                         !quiet && isatty(STDERR_FILENO));
   std::vector<Image> sheet;
   int nextSheetFrame = 1;
   const auto start = std::chrono::steady_clock::now();
@@ -190,15 +190,16 @@ int main(int argc, char** argv) {
     const ConvergenceInfo c = r.convergence();
     std::string how;
     if (c.automatic) {
-      char buf[160];
+      char buf[200];
       std::snprintf(buf, sizeof buf,
                     " (auto: %s; estimated error %.2f 8-bit steps RMS, 99 %% of tiles within "
-                    "%.2f)",
-                    c.converged ? "converged" : "stopped at maxFrames", c.error, c.tileError);
+                    "%.2f; %.0f %% of tiles skipped)",
+                    c.converged ? "converged" : "stopped at maxFrames", c.error, c.tileError,
+                    100.0 * c.skippedTiles);
       how = buf;
     }
-    std::fprintf(stderr, "penumbra-render: %d frames at %dx%d in %.2f s -> %s%s\n",
-                 r.framesDone(), s.width, s.height, seconds, outPath.c_str(), how.c_str());
+    std::fprintf(stderr, "penumbra-render: %d frames at %dx%d in %.2f s -> %s%s\n", r.framesDone(),
+                 s.width, s.height, seconds, outPath.c_str(), how.c_str());
   }
   return 0;
 }

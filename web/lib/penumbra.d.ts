@@ -19,6 +19,9 @@ export interface Settings {
   /** Automatic views stop when the displayed image's estimated RMS error is under this many
    *  8-bit steps and 99 % of its 8x8 tiles are under four times it (default 1). */
   convergenceThreshold?: number;
+  /** Automatic views: 8x8 tiles measured converged stop being shaded, so later frames go to
+   *  the regions still changing (default true). */
+  skipConvergedTiles?: boolean;
   /** f_d: direct-light samples start at frame floor(m * fd) (0..1). */
   fd?: number;
   /** d_occ, the screen-space occlusion distance in scene units (metres). */

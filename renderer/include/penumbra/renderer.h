@@ -94,16 +94,18 @@ struct FrameStats {
 // 8-bit steps (RMS) since the previous checkpoint and 99 % of its 8x8 tiles by less than four
 // times that.
 struct ConvergenceInfo {
-  bool automatic = false;  // frames is auto
-  bool measured = false;   // a checkpoint after the first has been measured in this view
-  bool converged = false;  // the last measurement met the criterion
-  int frame = 0;           // the last measured checkpoint
-  double error = 0.0;      // its RMS change over the image (8-bit steps): the estimated error
-  double tileError = 0.0;  // its 99th-percentile tile change (RMS, 8-bit steps)
+  bool automatic = false;       // frames is auto
+  bool measured = false;        // a checkpoint after the first has been measured in this view
+  bool converged = false;       // the last measurement met the criterion
+  int frame = 0;                // the last measured checkpoint
+  double error = 0.0;           // its RMS change over the image (8-bit steps): the estimated error
+  double tileError = 0.0;       // its 99th-percentile tile change (RMS, 8-bit steps)
   double convergedTiles = 0.0;  // the fraction of tiles under four times the threshold
   // The frame by which the view is expected to be done: m; for an automatic view from the
   // error's 1/sqrt(N) fall, a checkpoint, at most maxFrames (its frame once converged).
   int expectedFrames = 0;
+  // The fraction of tiles no longer shaded (adaptive frames, skipConvergedTiles).
+  double skippedTiles = 0.0;
 };
 
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).

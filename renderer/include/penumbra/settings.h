@@ -28,6 +28,10 @@ struct ProgressiveSettings {
   // between the last two checkpoints (frames 8, 16, 32, ...) and 99 % of its 8x8 tiles by less
   // than four times this (progressive/convergence.h).
   float convergenceThreshold = 1.0f;
+  // Auto: adaptive frames. Tiles measured converged stop being shaded and accumulated (a
+  // stencil mask), so the remaining frames go to penumbrae, glossy reflections and edges
+  // (progressive/convergence.h, TileSkip).
+  bool skipConvergedTiles = true;
   float directDelay = 0.3f;  // f_d: direct-light samples start at frame floor(m * f_d)
   // Renderer::preview, the image shown while the view moves: frame 1 (environment only) drawn
   // at this fraction of the width and height and upsampled, a quarter of the pixels at 0.5.

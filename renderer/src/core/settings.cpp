@@ -90,12 +90,18 @@ const SettingInfo kSchema[] = {
      "converged, at most maxFrames",
      PN_FIELD(progressive.frames, int), true},
     {"maxFrames", "progressive", "maxFrames", "--max-frames", SettingType::Int, 16, 4096, false,
-     false, false, true, "the most frames an auto view draws", PN_FIELD(progressive.maxFrames, int)},
+     false, false, true, "the most frames an auto view draws",
+     PN_FIELD(progressive.maxFrames, int)},
     {"convergenceThreshold", "progressive", "convergenceThreshold", "--convergence-threshold",
      SettingType::Float, 0.125, 255, false, false, false, true,
      "auto frames: converged when the displayed image changed by less than this many 8-bit "
      "steps (RMS) since the last checkpoint and 99 % of its 8x8 tiles by less than 4 times it",
      PN_FIELD(progressive.convergenceThreshold, float)},
+    {"skipConvergedTiles", "progressive", "skipConvergedTiles", "--no-tile-skip", SettingType::Bool,
+     0, 1, false, false, false, true,
+     "auto frames: 8x8 tiles measured converged (under half the threshold) stop being shaded, so "
+     "later frames go to the regions still changing",
+     PN_BOOL(progressive.skipConvergedTiles)},
     {"fd", "progressive", "fd", "--fd", SettingType::Float, 0, 1, false, true, false, true,
      "f_d: direct light starts at frame floor(m f_d)", PN_FIELD(progressive.directDelay, float)},
     // Not the web viewer's: it lowers its own resolution while the camera moves.

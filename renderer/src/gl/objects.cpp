@@ -173,6 +173,9 @@ Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat for
     case PixelFormat::Depth32F:
       internal = GL_DEPTH_COMPONENT32F;
       break;
+    case PixelFormat::Depth24Stencil8:
+      internal = GL_DEPTH24_STENCIL8;
+      break;
     case PixelFormat::RGBA8:
       internal = GL_RGBA8;
       break;
@@ -241,8 +244,10 @@ void Framebuffer::attachDepth(const TextureCube& cube, int face) {
 
 void Framebuffer::attachDepth(const Renderbuffer& renderbuffer) {
   bind();
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                            renderbuffer.id());
+  const GLenum attachment = renderbuffer.format() == PixelFormat::Depth24Stencil8
+                                ? GL_DEPTH_STENCIL_ATTACHMENT
+                                : GL_DEPTH_ATTACHMENT;
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, renderbuffer.id());
 }
 
 void Framebuffer::setDrawBuffers(int count) {
@@ -429,6 +434,32 @@ void clearDepth(float depth) {
   glDepthMask(GL_TRUE);
   glClearDepthf(depth);
   glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+void clearStencil() {
+  glStencilMask(0xFF);
+  glClearStencil(0);
+  glClear(GL_STENCIL_BUFFER_BIT);
+}
+
+void setStencil(StencilMode mode) {
+  switch (mode) {
+    case StencilMode::Off:
+      glDisable(GL_STENCIL_TEST);
+      return;
+    case StencilMode::SkipMarked:
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_EQUAL, 0, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+      glStencilMask(0);
+      return;
+    case StencilMode::Mark:
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_ALWAYS, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      glStencilMask(0xFF);
+      return;
+  }
 }
 
 void clearBufferFloat(int index, float r, float g, float b, float a) {

@@ -156,6 +156,14 @@ void setScissor(int x, int y, int width, int height);
 void disableScissor();
 void clearColor(float r, float g, float b, float a);
 void clearDepth(float depth = 1.0f);
+// The stencil test of the frame's depth-stencil buffer, which marks the tiles an automatic view
+// no longer shades (Renderer::Impl::skipTiles). Off: no test (Penumbra's default). SkipMarked:
+// draws only where the stencil is 0, writing nothing. Mark: writes 1 wherever a fragment is
+// drawn. Framebuffers without a stencil buffer pass the test.
+enum class StencilMode { Off, SkipMarked, Mark };
+void setStencil(StencilMode mode);
+// Clears the bound framebuffer's stencil to 0 (within the scissor, when on).
+void clearStencil();
 // Clears float colour attachment `index` of the bound framebuffer.
 void clearBufferFloat(int index, float r, float g, float b, float a);
 // Waits for the GPU (timing, read-back).

@@ -75,6 +75,23 @@ StateGuard::StateGuard(bool active) : active_(active) {
   GLboolean mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
   glGetBooleanv(GL_COLOR_WRITEMASK, mask);
   for (int i = 0; i < 4; ++i) colorMask_[static_cast<std::size_t>(i)] = mask[i] == GL_TRUE;
+  // Front and back stencil state: setStencil() sets both.
+  const GLenum stencil[] = {GL_STENCIL_FUNC,
+                            GL_STENCIL_REF,
+                            GL_STENCIL_VALUE_MASK,
+                            GL_STENCIL_FAIL,
+                            GL_STENCIL_PASS_DEPTH_FAIL,
+                            GL_STENCIL_PASS_DEPTH_PASS,
+                            GL_STENCIL_WRITEMASK,
+                            GL_STENCIL_BACK_FUNC,
+                            GL_STENCIL_BACK_REF,
+                            GL_STENCIL_BACK_VALUE_MASK,
+                            GL_STENCIL_BACK_FAIL,
+                            GL_STENCIL_BACK_PASS_DEPTH_FAIL,
+                            GL_STENCIL_BACK_PASS_DEPTH_PASS,
+                            GL_STENCIL_BACK_WRITEMASK,
+                            GL_STENCIL_CLEAR_VALUE};
+  for (std::size_t i = 0; i < stencil_.size(); ++i) stencil_[i] = get(stencil[i]);
   glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &polygonOffset_[0]);
   glGetFloatv(GL_POLYGON_OFFSET_UNITS, &polygonOffset_[1]);
   for (std::size_t i = 0; i < pixelStore_.size(); ++i) {
@@ -90,6 +107,15 @@ StateGuard::~StateGuard() {
   for (std::size_t i = 0; i < pixelStore_.size(); ++i)
     glPixelStorei(kPixelStore[i], pixelStore_[i]);
   glPolygonOffset(polygonOffset_[0], polygonOffset_[1]);
+  const auto st = [&](std::size_t i) { return static_cast<GLuint>(stencil_[i]); };
+  for (std::size_t face = 0; face < 2; ++face) {
+    const GLenum f = face == 0 ? GL_FRONT : GL_BACK;
+    const std::size_t o = face * 7;
+    glStencilFuncSeparate(f, st(o), stencil_[o + 1], st(o + 2));
+    glStencilOpSeparate(f, st(o + 3), st(o + 4), st(o + 5));
+    glStencilMaskSeparate(f, st(o + 6));
+  }
+  glClearStencil(stencil_[14]);
   glColorMask(colorMask_[0], colorMask_[1], colorMask_[2], colorMask_[3]);
   glDepthMask(depthMask_ ? GL_TRUE : GL_FALSE);
   glFrontFace(static_cast<GLenum>(frontFace_));

@@ -31,6 +31,7 @@ class StateGuard {
   std::array<int, 6> blend_{};  // src rgb, dst rgb, src alpha, dst alpha, eq rgb, eq alpha
   std::array<float, 4> blendColor_{}, clearColor_{};
   int depthFunc_ = 0, cullFace_ = 0, frontFace_ = 0;
+  std::array<int, 15> stencil_{};  // front and back func/ref/mask/ops/writemask, clear value
   bool depthMask_ = true;
   std::array<bool, 4> colorMask_{};
   float polygonOffset_[2] = {0, 0}, clearDepth_ = 1;

@@ -37,6 +37,8 @@ FormatInfo info(PixelFormat f) {
       return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4};
     case PixelFormat::Depth32F:
       return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4};
+    case PixelFormat::Depth24Stencil8:
+      return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, 4};
   }
   return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
 }
@@ -133,6 +135,8 @@ const char* formatName(PixelFormat format) {
       return "DEPTH_COMPONENT24";
     case PixelFormat::Depth32F:
       return "DEPTH_COMPONENT32F";
+    case PixelFormat::Depth24Stencil8:
+      return "DEPTH24_STENCIL8";
   }
   return "?";
 }
@@ -141,7 +145,8 @@ int bytesPerPixel(PixelFormat format) {
   return info(format).bytes;
 }
 bool isDepthFormat(PixelFormat f) {
-  return f == PixelFormat::Depth24 || f == PixelFormat::Depth32F;
+  return f == PixelFormat::Depth24 || f == PixelFormat::Depth32F ||
+         f == PixelFormat::Depth24Stencil8;
 }
 
 int fullMipCount(int width, int height) {

@@ -18,8 +18,9 @@ enum class PixelFormat {
   RGB16F,  // filterable HDR textures (environment)
   RG16F,
   R32F,
-  Depth24,   // DEPTH_COMPONENT24
-  Depth32F,  // DEPTH_COMPONENT32F
+  Depth24,          // DEPTH_COMPONENT24
+  Depth32F,         // DEPTH_COMPONENT32F
+  Depth24Stencil8,  // DEPTH24_STENCIL8 (renderbuffers: the frame's depth and tile mask)
 };
 
 enum class DataType { UInt8, Float, HalfFloat };

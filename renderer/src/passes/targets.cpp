@@ -50,7 +50,8 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
   t.height = h;
   t.format = format;
   t.prepassFormat = prepassFormat;
-  auto fd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
+  // With stencil: an automatic view marks the tiles it no longer shades (adaptive frames).
+  auto fd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24Stencil8);
   if (!fd) return fd.error();
   t.frameDepth = std::move(*fd);
   auto pd = gl::Renderbuffer::create(w, h, gl::PixelFormat::Depth24);
@@ -114,8 +115,15 @@ Status RenderTargets::ensureConvergence(int tile) {
   if (!snap) return makeError("checkpoint target: " + snap.message());
   auto tiles = makeColor(tilesWidth(tile), tilesHeight(tile), format, nullptr);
   if (!tiles) return makeError("convergence target: " + tiles.message());
+  auto mask = gl::Texture2D::create(
+      {.width = tilesWidth(tile),
+       .height = tilesHeight(tile),
+       .format = gl::PixelFormat::RGBA8,
+       .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}});
+  if (!mask) return makeError("tile mask: " + mask.message());
   checkpoint = std::move(*snap);
   convergenceTiles = std::move(*tiles);
+  tileMask = std::move(*mask);
   return {};
 }
 

@@ -22,6 +22,7 @@ struct RenderTargets {
   gl::PixelFormat format = gl::PixelFormat::RGBA32F;
   gl::PixelFormat prepassFormat = gl::PixelFormat::RGBA32F;  // also the probe cache's
   ColorTarget frame;  // this intermediate frame's radiance, with depth
+  // Depth and stencil: the stencil marks the tiles an automatic view no longer shades.
   gl::Renderbuffer frameDepth;
   std::array<ColorTarget, 2> accumulation;
   int current = 0;      // accumulation[current] holds the running mean
@@ -54,6 +55,7 @@ struct RenderTargets {
   // accumulation format. Made on first use.
   ColorTarget checkpoint;
   ColorTarget convergenceTiles;
+  gl::Texture2D tileMask;  // RGBA8, a texel a tile: red 255 where the tile is no longer shaded
   int tilesWidth(int tile) const { return (width + tile - 1) / tile; }
   int tilesHeight(int tile) const { return (height + tile - 1) / tile; }
 

@@ -75,9 +75,16 @@ Status Controller::finishFrame(FrameRenderer& renderer) {
   if (!automatic() || !frame.checkpoint || stopped_) return {};
   auto tiles = renderer.measureTiles(frame.frame);
   if (!tiles) return tiles.error();
-  if (tiles->empty()) return {};
-  estimate_ = summarizeTiles(*tiles, settings_.convergenceThreshold, frame.frame);
+  if (tiles->rms.empty()) return {};
+  const double threshold = settings_.convergenceThreshold;
+  // The skipped tiles' changes are zero: their frozen ones stand in (TileSkip).
+  estimate_ = summarizeTiles(skip_.effective(tiles->rms), threshold, frame.frame);
   stopped_ = estimate_.converged;
+  if (!stopped_ && settings_.skipConvergedTiles && skip_.update(*tiles, threshold, frame.frame)) {
+    PN_TRY(renderer.skipTiles(skip_.mask()));
+  }
+  estimate_.skippedTiles =
+      static_cast<double>(skip_.skipped()) / static_cast<double>(tiles->rms.size());
   return {};
 }
 

@@ -7,6 +7,7 @@
 // (progressive/convergence.h), or at maxFrames.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "penumbra/error.h"
@@ -29,12 +30,18 @@ class FrameRenderer {
     PN_TRY(renderFrame(plan));
     return true;
   }
-  // At a checkpoint of an automatic view, after its frame is complete: the RMS change of the
-  // displayed image per tile since the previous checkpoint of this view (empty at the first),
-  // in 8-bit steps; the renderer keeps this checkpoint's image for the next.
-  virtual Result<std::vector<float>> measureTiles(int frame) {
+  // At a checkpoint of an automatic view, after its frame is complete: the RMS and the largest
+  // change of the displayed image per tile since the previous checkpoint of this view (empty at
+  // the first), in 8-bit steps; the renderer keeps this checkpoint's image for the next.
+  virtual Result<TileChanges> measureTiles(int frame) {
     (void)frame;
-    return std::vector<float>{};
+    return TileChanges{};
+  }
+  // From now until the view restarts, leaves the tiles of `mask` (TileSkip::mask) as they are:
+  // later frames neither shade nor accumulate them.
+  virtual Status skipTiles(std::span<const uint8_t> mask) {
+    (void)mask;
+    return {};
   }
 };
 
@@ -74,6 +81,9 @@ class Controller {
   bool automatic() const { return settings_.frames == 0; }
   // The last checkpoint's measurement of this view (measured false before the second).
   const ConvergenceEstimate& estimate() const { return estimate_; }
+  // The tiles this view no longer shades (adaptive frames,
+  // ProgressiveSettings::skipConvergedTiles).
+  const TileSkip& skippedTiles() const { return skip_; }
   // When the view is expected to be done: m, or for an automatic view the estimate's
   // expectedFrames (framesDone() once converged).
   int expectedFrames() const;
@@ -90,12 +100,14 @@ class Controller {
   bool inFrame_ = false;
   bool stopped_ = false;
   ConvergenceEstimate estimate_;
+  TileSkip skip_;
 
   void restart() {
     next_ = 1;
     inFrame_ = false;
     stopped_ = false;
     estimate_ = {};
+    skip_.reset();
   }
   // Frame next_ is complete: counts it and, at an automatic view's checkpoint, measures.
   Status finishFrame(FrameRenderer& renderer);

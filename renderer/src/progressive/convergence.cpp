@@ -22,15 +22,48 @@ ConvergenceEstimate summarizeTiles(std::span<const float> tileRms, double thresh
   }
   e.error = std::sqrt(squares / static_cast<double>(sorted.size()));
   const double tileBound = kTileFactor * threshold;
-  const auto under = std::count_if(sorted.begin(), sorted.end(),
-                                   [&](float v) { return v < tileBound; });
+  const auto under =
+      std::count_if(sorted.begin(), sorted.end(), [&](float v) { return v < tileBound; });
   e.convergedTiles = static_cast<double>(under) / static_cast<double>(sorted.size());
-  const size_t k = std::min(
-      sorted.size() - 1, static_cast<size_t>(std::ceil(kConvergedFraction * sorted.size())) - 1);
+  const size_t k = std::min(sorted.size() - 1,
+                            static_cast<size_t>(std::ceil(kConvergedFraction * sorted.size())) - 1);
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
   e.tileError = sorted[k];
   e.converged = e.error < threshold && e.tileError < tileBound;
   return e;
+}
+
+bool TileSkip::update(const TileChanges& changes, double threshold, int frame) {
+  const size_t n = changes.rms.size();
+  if (n == 0 || changes.max.size() != n) return false;
+  if (mask_.size() != n) {
+    mask_.assign(n, 0);
+    frozen_.assign(n, 0.0f);
+    skipped_ = 0;
+  }
+  if (frame < kSkipFromFrame) return false;
+  bool added = false;
+  for (size_t i = 0; i < n; ++i) {
+    const float r = changes.rms[i], m = changes.max[i];
+    // (NaN compares false: a tile that is not finite keeps being shaded.)
+    if (mask_[i] || !(r < kSkipFactor * threshold) || !(m < kSkipPixelFactor * threshold)) {
+      continue;
+    }
+    mask_[i] = 1;
+    frozen_[i] = r;
+    ++skipped_;
+    added = true;
+  }
+  return added;
+}
+
+std::vector<float> TileSkip::effective(std::span<const float> rms) const {
+  std::vector<float> out(rms.begin(), rms.end());
+  if (mask_.size() != out.size()) return out;
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (mask_[i]) out[i] = frozen_[i];
+  }
+  return out;
 }
 
 int expectedFrames(const ConvergenceEstimate& e, double threshold, int cap) {

@@ -11,21 +11,60 @@
 // (glsl/convergence.frag).
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 namespace penumbra::progressive {
 
-inline constexpr int kConvergenceTile = 8;         // pixels a side
+inline constexpr int kConvergenceTile = 8;          // pixels a side
 inline constexpr double kConvergedFraction = 0.99;  // of the tiles
 inline constexpr double kTileFactor = 4.0;          // their bound, times the threshold
 
+// Adaptive frames: from checkpoint kSkipFromFrame on, a tile whose RMS change is under
+// kSkipFactor times the threshold and whose largest single change (a channel of one pixel) is
+// under kSkipPixelFactor times it stops being shaded; the rest of the view's frames go to the
+// tiles still changing (penumbrae, glossy reflections, edges). The remaining error of a tile so
+// frozen is about its last change (which estimates its standard error, or a 1/N bias's rest),
+// half an 8-bit step at the default threshold: no seam shows.
+inline constexpr double kSkipFactor = 0.5;
+inline constexpr double kSkipPixelFactor = 2.0;
+inline constexpr int kSkipFromFrame = 32;
+
+// A checkpoint's measurement, per tile: the RMS change and the largest change, 8-bit steps.
+struct TileChanges {
+  std::vector<float> rms;
+  std::vector<float> max;
+};
+
+// The tiles an automatic view no longer shades, kept by the controller. A skipped tile stays
+// skipped until the view restarts; its change at the checkpoint that froze it stands in for
+// its (zero) change afterwards, so the view's estimate stays the error of the image shown.
+class TileSkip {
+ public:
+  void reset() { *this = {}; }
+  // Adds the tiles converged at checkpoint `frame`. True when any was added.
+  bool update(const TileChanges& changes, double threshold, int frame);
+  // The tiles' RMS changes with the skipped tiles' frozen ones in place.
+  std::vector<float> effective(std::span<const float> rms) const;
+  // A byte a tile (1: skipped), row-major from the bottom row: empty before any was skipped.
+  const std::vector<uint8_t>& mask() const { return mask_; }
+  int skipped() const { return skipped_; }
+
+ private:
+  std::vector<uint8_t> mask_;
+  std::vector<float> frozen_;
+  int skipped_ = 0;
+};
+
 struct ConvergenceEstimate {
-  bool measured = false;    // a checkpoint had one before it in this view
-  int frame = 0;            // the checkpoint
-  double error = 0.0;       // the RMS change over the image, 8-bit steps
-  double tileError = 0.0;   // the 99th percentile of the tiles' RMS change, 8-bit steps
+  bool measured = false;        // a checkpoint had one before it in this view
+  int frame = 0;                // the checkpoint
+  double error = 0.0;           // the RMS change over the image, 8-bit steps
+  double tileError = 0.0;       // the 99th percentile of the tiles' RMS change, 8-bit steps
   double convergedTiles = 0.0;  // fraction of tiles under kTileFactor times the threshold
-  bool converged = false;   // error < threshold and tileError < kTileFactor threshold
+  bool converged = false;       // error < threshold and tileError < kTileFactor threshold
+  double skippedTiles = 0.0;    // fraction of tiles no longer shaded (adaptive frames)
 };
 
 // The estimate from the tiles' RMS changes at checkpoint `frame`.

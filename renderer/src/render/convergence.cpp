@@ -1,13 +1,14 @@
 // Renderer::Impl::measureTiles: an automatic view's convergence measure at a checkpoint
 // (progressive/convergence.h). glsl/convergence.frag compares the displayed image of the
 // running mean with that of the previous checkpoint's mean, a texel per tile; the small result
-// is read back, and the mean is copied for the next checkpoint.
+// is read back, and the mean is copied for the next checkpoint. skipTiles: adaptive frames, the
+// tiles measured converged marked in the frame's stencil (glsl/tile_mask.frag).
 #include "gl/errors.h"
 #include "render/renderer_impl.h"
 
 namespace penumbra {
 
-Result<std::vector<float>> Renderer::Impl::measureTiles(int frame) {
+Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
   constexpr int tile = progressive::kConvergenceTile;
   PN_TRY(targets->ensureConvergence(tile));
   if (!convergence) {
@@ -18,7 +19,7 @@ Result<std::vector<float>> Renderer::Impl::measureTiles(int frame) {
   }
   auto& t = *targets;
   const auto& mean = t.accumulation[static_cast<size_t>(t.current)];
-  std::vector<float> rms;
+  progressive::TileChanges changes;
   if (checkpointFrame > 0 && checkpointFrame < frame) {
     const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
     t.convergenceTiles.framebuffer.bind();
@@ -39,12 +40,58 @@ Result<std::vector<float>> Renderer::Impl::measureTiles(int frame) {
   if (checkpointFrame > 0 && checkpointFrame < frame) {
     const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
     const std::vector<float> texels = t.convergenceTiles.framebuffer.readRgbaFloat(0, 0, 0, tw, th);
-    rms.reserve(static_cast<size_t>(tw) * th);
-    for (size_t i = 0; i < texels.size(); i += 4) rms.push_back(texels[i]);
+    changes.rms.reserve(static_cast<size_t>(tw) * th);
+    changes.max.reserve(static_cast<size_t>(tw) * th);
+    for (size_t i = 0; i < texels.size(); i += 4) {
+      changes.rms.push_back(texels[i]);
+      changes.max.push_back(texels[i + 2]);
+    }
   }
   checkpointFrame = frame;
   PN_TRY(gl::checkError("measuring convergence at frame " + std::to_string(frame)));
-  return rms;
+  return changes;
+}
+
+Status Renderer::Impl::skipTiles(std::span<const uint8_t> mask) {
+  constexpr int tile = progressive::kConvergenceTile;
+  auto& t = *targets;
+  const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
+  PN_CHECK(mask.size() == static_cast<size_t>(tw) * static_cast<size_t>(th),
+           "skipTiles: a mask byte per tile of the targets");
+  PN_TRY(t.ensureConvergence(tile));
+  if (!tileMaskPass) {
+    auto pass = passes::FullscreenPass::create(library, "tile_mask.frag", false,
+                                               {{"PN_TILE", std::to_string(tile)}});
+    if (!pass) return pass.error();
+    tileMaskPass.emplace(std::move(*pass));
+  }
+  std::vector<uint8_t> texels(mask.size() * 4, 0);
+  for (size_t i = 0; i < mask.size(); ++i) texels[i * 4] = mask[i] ? 255 : 0;
+  t.tileMask.upload(0, texels.data(), gl::DataType::UInt8);
+  // The mask is the union of every checkpoint's: redrawn whole into a cleared stencil.
+  const auto& mean = t.accumulation[static_cast<size_t>(t.current)];
+  mean.framebuffer.bind();
+  gl::setViewport(0, 0, t.width, t.height);
+  gl::clearStencil();
+  const gl::Program& p = tileMaskPass->begin();
+  gl::apply({.depthTest = gl::DepthTest::Off,
+             .depthWrite = false,
+             .cull = gl::Cull::None,
+             .colorWrite = false});
+  gl::setStencil(gl::StencilMode::Mark);
+  t.tileMask.bind(0);
+  p.set("uMask", 0);
+  tileMaskPass->draw();
+  gl::setStencil(gl::StencilMode::Off);
+  gl::Texture2D::unbind(0);
+  gl::apply({});
+  // Both accumulation targets hold the skipped tiles' mean from now on, so the ping-pong,
+  // which no longer writes them, reads the same mean from either.
+  mean.framebuffer.blitColorTo(t.accumulation[static_cast<size_t>(1 - t.current)].framebuffer,
+                               t.width, t.height);
+  tilesSkipped = true;
+  PN_TRY(gl::checkError("marking converged tiles"));
+  return {};
 }
 
 }  // namespace penumbra

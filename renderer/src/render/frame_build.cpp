@@ -28,6 +28,7 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
     probeCacheFrame = -1;
     lightCacheWritten = 0;
     checkpointFrame = 0;
+    tilesSkipped = false;
   }
   auto& units = pending.units;
   const int k = pending.tiles;

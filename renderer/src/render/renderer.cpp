@@ -114,7 +114,8 @@ ConvergenceInfo Renderer::convergence() const {
           .error = e.error,
           .tileError = e.tileError,
           .convergedTiles = e.convergedTiles,
-          .expectedFrames = c.expectedFrames()};
+          .expectedFrames = c.expectedFrames(),
+          .skippedTiles = e.skippedTiles};
 }
 const FrameStats& Renderer::lastFrame() const {
   return impl_->stats;

@@ -60,6 +60,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::FullscreenPass> tonemap;
   std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
   int checkpointFrame = 0;  // the frame whose mean targets->checkpoint holds (0: none this view)
+  std::optional<passes::FullscreenPass> tileMaskPass;  // made on first use
+  // The frame's stencil marks tiles this view no longer shades (skipTiles): the image units
+  // (lighting, compose, accumulation) test it. Cleared by frame 1.
+  bool tilesSkipped = false;
   std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
   Bounds probeBox;                            // the scene file's, else the scene's bounds
   glm::ivec3 probeCounts{0};                  // the scene file's (0: from the density)
@@ -104,15 +108,18 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   // First light (distributeSamples): where the environment alone would give frame 1 less than
-  // half of the scene's light (progressive::environmentShare), frame 1 evaluates the scene's lights.
+  // half of the scene's light (progressive::environmentShare), frame 1 evaluates the scene's
+  // lights.
   void updateFirstLight() {
     controller.setFirstLight(
         progressive::environmentShare(sceneLights, environmentMean * settings.environmentIntensity,
-                                 scene ? scene->bounds() : Bounds{}) < 0.5f);
+                                      scene ? scene->bounds() : Bounds{}) < 0.5f);
   }
 
-  // FrameRenderer: the tiles' RMS change since the last checkpoint (render/convergence.cpp).
-  Result<std::vector<float>> measureTiles(int frame) override;
+  // FrameRenderer: the tiles' RMS and largest change since the last checkpoint, and the tiles
+  // no longer shaded (render/convergence.cpp).
+  Result<progressive::TileChanges> measureTiles(int frame) override;
+  Status skipTiles(std::span<const uint8_t> mask) override;
 
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
@@ -260,7 +267,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   // Restricts drawing to band t of the pending frame (no-op unsplit). Bands cover the drawn
   // part bottom-up, rows [t h / k, (t + 1) h / k).
+  // Also where the frame's units over the image apply the tile mask (adaptive frames).
   void band(int t) const {
+    if (tilesSkipped) gl::setStencil(gl::StencilMode::SkipMarked);
     if (pending.tiles <= 1) return;
     const int h = pending.drawHeight, k = pending.tiles;
     const int y0 = t * h / k, y1 = (t + 1) * h / k;
@@ -268,6 +277,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   void endBand() const {
+    if (tilesSkipped) gl::setStencil(gl::StencilMode::Off);
     if (pending.tiles > 1) gl::disableScissor();
   }
   // Band t of k of the frame's accumulation (frame 1 becomes the mean by a swap instead; a
