@@ -31,6 +31,7 @@
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
 #include "progressive/first_light.h"
+#include "progressive/frame_planner.h"
 #include "progressive/light_cache.h"
 #include "render/light_samples.h"
 
@@ -76,10 +77,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::unique_ptr<GpuEnvironment> environment;
   Camera camera;
   bool hasCamera = false;
-  bool prepassValid = false;
-  int probeCacheFrame = -1;  // the frame that last wrote the probe cache (-1: none this view)
-  double probeCacheCaptures = 0.0;  // the volume's mean captures a probe at that frame
-  int lightCacheWritten = 0;        // frames of this view in the area lights' cache
+  // The per-view caches' counters (the prepass, the probe volume's and the area lights' caches),
+  // advanced by the frame planner (progressive/frame_planner.h).
+  progressive::CacheState caches;
   FrameStats stats;
   float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
   std::chrono::steady_clock::time_point passStart;
@@ -172,8 +172,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
           caps.colorBufferHalfFloat ? gl::PixelFormat::RGBA16F : caps.accumulationFormat);
       if (!t) return t.error();
       targets.emplace(std::move(*t));
-      prepassValid = false;
-      probeCacheFrame = -1;
+      caches.prepassValid = false;
+      caches.probeCacheFrame = -1;
     }
     if (shadowResize) {
       shadows.reset();
@@ -300,8 +300,17 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   // preview: frame 1 drawn at previewScale as a stand-in for the mean (Renderer::preview).
-  // (render/frame_build.cpp: the frame as a list of units of GL work.)
+  // (render/frame_build.cpp: the frame planner's steps as units of GL work.)
   void beginFrame(const FramePlan& plan, int tiles, bool preview = false);
+  // The planner's view of the scene and settings, and the limits and switches it plans with.
+  progressive::FrameScene frameScene(bool preview) const;
+  progressive::FrameLimits frameLimits() const;
+  void buildBatches(const progressive::FrameSchedule& fs, float occlusionDistance);
+  std::function<Status()> shadowUnit(const progressive::FrameStep& step,
+                                     const progressive::FrameSchedule& fs);
+  std::function<Status()> unitFor(const progressive::FrameStep& step,
+                                  const progressive::FrameSchedule& fs, const CameraMatrices& still,
+                                  float occlusionDistance);
 
   // Runs the pending frame's next unit (all of them unsplit). True once the frame is done.
   Result<bool> runPart() {
