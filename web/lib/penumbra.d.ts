@@ -29,6 +29,9 @@ export interface Settings {
   /** Exposure in EV: the image is scaled by 2^exposure before tone mapping. */
   exposure?: number;
   toneMapper?: ToneMapper;
+  /** Bloom: the share of the displayed image's light spread by a wide blur (glare around
+   *  emissive surfaces and highlights; the mean is kept). 0 (the default) is off; 0..1. */
+  bloom?: number;
   /** One-bounce screen-space indirect light. */
   screenSpaceIndirect?: boolean;
   /** Sky shadows: one environment direction a frame (by luminance, above the horizon) casts a

@@ -82,6 +82,9 @@ struct RenderSettings {
   int height = 720;
   float exposure = 0.0f;  // EV: the image is scaled by 2^exposure before tone mapping
   ToneMapper toneMapper = ToneMapper::PbrNeutral;
+  // Bloom: the share of the displayed image's light spread by a wide, energy-conserving blur
+  // (glare around emissive surfaces and highlights); 0 off (passes/effects/bloom.cpp).
+  float bloom = 0.0f;
   float environmentIntensity = 1.0f;
   float environmentRotation = 0.0f;  // degrees about +Y
   // When a panorama is prefiltered on load: luminance above which its brightest compact region

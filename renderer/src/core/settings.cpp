@@ -67,6 +67,10 @@ const SettingInfo kSchema[] = {
      [](RenderSettings& s, double v) {
        s.toneMapper = static_cast<ToneMapper>(static_cast<int>(v));
      }},
+    {"bloom", "", "bloom", "--bloom", SettingType::Float, 0, 1, false, false, false, true,
+     "bloom: the share of the displayed image's light spread by a wide blur (glare around "
+     "emissive surfaces and highlights; the mean is kept); 0 off",
+     PN_FIELD(bloom, float)},
     {"environmentIntensity", "environment", "intensity", "--env-intensity", SettingType::Float, 0,
      1e6, false, false, false, true, "environment radiance multiplier",
      PN_FIELD(environmentIntensity, float)},

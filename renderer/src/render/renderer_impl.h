@@ -20,6 +20,7 @@
 #include "gpu/gpu_scene.h"
 #include "passes/accumulate_pass.h"
 #include "passes/camera_math.h"
+#include "passes/effect_chain.h"
 #include "passes/fullscreen_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/limits.h"
@@ -59,6 +60,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::OcclusionPass> occlusionPass;
   std::optional<passes::FullscreenPass> tonemap;
+  passes::EffectChain effects;  // post effects before tone mapping
   std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
   int checkpointFrame = 0;  // the frame whose mean targets->checkpoint holds (0: none this view)
   std::optional<passes::FullscreenPass> tileMaskPass;  // made on first use
@@ -95,9 +97,17 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   // Exposure, tone mapping and sRGB of the running mean into the bound framebuffer and
   // viewport (the display target, or the canvas).
-  void drawToneMapped() {
+  // The radiance the display shows: the mean after the post effects (passes/effect_chain.h).
+  // Runs them (into their own targets): call before binding the display's framebuffer.
+  Result<const gl::Texture2D*> displayedRadiance() {
+    const auto& mean = targets->accumulation[static_cast<size_t>(targets->current)].color;
+    return effects.run(library, mean, targets->width, targets->height, settings,
+                       caps.colorBufferHalfFloat);
+  }
+  // Tone maps `radiance` into the bound framebuffer's viewport.
+  void drawToneMapped(const gl::Texture2D& radiance) {
     const gl::Program& p = tonemap->begin();
-    targets->accumulation[static_cast<size_t>(targets->current)].color.bind(0);
+    radiance.bind(0);
     p.set("uRadiance", 0);
     p.set("uExposureScale", std::exp2(settings.exposure));
     p.set("uToneMapper", static_cast<int>(settings.toneMapper));

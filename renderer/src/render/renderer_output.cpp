@@ -39,9 +39,11 @@ Result<Image> Renderer::readRadiance() {
 Status Renderer::toneMap() {
   gl::StateGuard guard(impl_->options.preserveHostState);
   auto& t = *impl_->targets;
+  auto radiance = impl_->displayedRadiance();
+  if (!radiance) return radiance.error();
   t.display.framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
-  impl_->drawToneMapped();
+  impl_->drawToneMapped(**radiance);
   return gl::checkError("tone mapping");
 }
 
@@ -80,9 +82,11 @@ Status Renderer::present(const PresentTarget& target) {
                      std::to_string(target.height) + " is empty");
   }
   gl::StateGuard guard(impl_->options.preserveHostState);
+  auto radiance = impl_->displayedRadiance();
+  if (!radiance) return radiance.error();
   gl::Framebuffer::bindExternal(target.framebuffer);
   gl::setViewport(target.x, target.y, target.width, target.height);
-  impl_->drawToneMapped();
+  impl_->drawToneMapped(**radiance);
   return gl::checkError("presenting to framebuffer " + std::to_string(target.framebuffer));
 }
 
