@@ -57,10 +57,52 @@ gl::Wrap wrap(int w) {
   }
 }
 
+// The attribute from `data`, or where the primitive has none, a constant.
+template <class T>
+Status attributeOr(GpuPrimitive& p, int location, const std::vector<T>& data, int components,
+                   glm::vec4 constant) {
+  if (!data.empty()) return addAttribute(p, location, data, components);
+  p.vao.setConstant(location, constant.x, constant.y, constant.z, constant.w);
+  return {};
+}
+
+// One primitive's vertex arrays (constants for missing attributes) and index buffer, with its
+// capture stand-in's indices after its own.
+Result<std::unique_ptr<GpuPrimitive>> uploadPrimitive(const Primitive& prim, float meshScale,
+                                                      float sceneDiagonal) {
+  auto p = std::make_unique<GpuPrimitive>();
+  p->vao = gl::VertexArray::create();
+  p->material = prim.material;
+  p->bounds = prim.bounds;
+  p->indexCount = static_cast<int>(prim.indices.size());
+  PN_TRY(addAttribute(*p, kPosition, prim.positions, 3));
+  PN_TRY(attributeOr(*p, kNormal, prim.normals, 3, {0, 0, 1, 0}));
+  PN_TRY(attributeOr(*p, kTangent, prim.tangents, 4, {0, 0, 0, 1}));
+  PN_TRY(attributeOr(*p, kUv0, prim.uv0, 2, {0, 0, 0, 1}));
+  // (Without a second UV set, the first stands in for it.)
+  PN_TRY(attributeOr(*p, kUv1, prim.uv1.empty() ? prim.uv0 : prim.uv1, 2, {0, 0, 0, 1}));
+  PN_TRY(attributeOr(*p, kColor, prim.colors, 4, {1, 1, 1, 1}));
+  // The capture stand-in goes after the primitive's own indices, in the same buffer.
+  const std::vector<uint32_t> lod = captureLod(prim, meshScale, sceneDiagonal);
+  p->captureIndexCount = static_cast<int>(lod.empty() ? prim.indices.size() : lod.size());
+  p->captureByteOffset = lod.empty() ? 0 : prim.indices.size() * sizeof(uint32_t);
+  std::vector<uint32_t> indices;
+  if (!lod.empty()) {
+    indices.reserve(prim.indices.size() + lod.size());
+    indices.insert(indices.end(), prim.indices.begin(), prim.indices.end());
+    indices.insert(indices.end(), lod.begin(), lod.end());
+  }
+  auto ib = gl::Buffer::create(gl::BufferKind::Index,
+                               std::span<const uint32_t>(lod.empty() ? prim.indices : indices));
+  if (!ib) return ib.error();
+  p->vao.setIndexBuffer(*ib, gl::IndexType::UInt32);
+  p->buffers.push_back(std::move(*ib));
+  return p;
+}
+
 }  // namespace
 
-Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
-  auto gs = std::make_unique<GpuScene>();
+Status GpuScene::uploadMeshes(const Scene& scene) {
   // Each mesh's largest scale over its instances, for its capture stand-in's error bound.
   std::vector<float> meshScale(scene.meshes.size(), 0.0f);
   for (const Instance& inst : scene.instances) {
@@ -73,63 +115,19 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   const float sceneDiagonal =
       scene.bounds.valid() ? glm::length(scene.bounds.max - scene.bounds.min) : 0.0f;
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-    const Mesh& mesh = scene.meshes[mi];
     std::vector<GpuPrimitive*> prims;
-    for (const Primitive& prim : mesh.primitives) {
-      auto p = std::make_unique<GpuPrimitive>();
-      p->vao = gl::VertexArray::create();
-      p->material = prim.material;
-      p->bounds = prim.bounds;
-      p->indexCount = static_cast<int>(prim.indices.size());
-      PN_TRY(addAttribute(*p, kPosition, prim.positions, 3));
-      if (!prim.normals.empty()) {
-        PN_TRY(addAttribute(*p, kNormal, prim.normals, 3));
-      } else {
-        p->vao.setConstant(kNormal, 0, 0, 1, 0);
-      }
-      if (!prim.tangents.empty()) {
-        PN_TRY(addAttribute(*p, kTangent, prim.tangents, 4));
-      } else {
-        p->vao.setConstant(kTangent, 0, 0, 0, 1);
-      }
-      if (!prim.uv0.empty()) {
-        PN_TRY(addAttribute(*p, kUv0, prim.uv0, 2));
-      } else {
-        p->vao.setConstant(kUv0, 0, 0, 0, 1);
-      }
-      if (!prim.uv1.empty()) {
-        PN_TRY(addAttribute(*p, kUv1, prim.uv1, 2));
-      } else if (!prim.uv0.empty()) {
-        PN_TRY(addAttribute(*p, kUv1, prim.uv0, 2));
-      } else {
-        p->vao.setConstant(kUv1, 0, 0, 0, 1);
-      }
-      if (!prim.colors.empty()) {
-        PN_TRY(addAttribute(*p, kColor, prim.colors, 4));
-      } else {
-        p->vao.setConstant(kColor, 1, 1, 1, 1);
-      }
-      // The capture stand-in goes after the primitive's own indices, in the same buffer.
-      const std::vector<uint32_t> lod = captureLod(prim, meshScale[mi], sceneDiagonal);
-      p->captureIndexCount = static_cast<int>(lod.empty() ? prim.indices.size() : lod.size());
-      p->captureByteOffset = lod.empty() ? 0 : prim.indices.size() * sizeof(uint32_t);
-      std::vector<uint32_t> indices;
-      if (!lod.empty()) {
-        indices.reserve(prim.indices.size() + lod.size());
-        indices.insert(indices.end(), prim.indices.begin(), prim.indices.end());
-        indices.insert(indices.end(), lod.begin(), lod.end());
-      }
-      auto ib = gl::Buffer::create(gl::BufferKind::Index,
-                                   std::span<const uint32_t>(lod.empty() ? prim.indices : indices));
-      if (!ib) return ib.error();
-      p->vao.setIndexBuffer(*ib, gl::IndexType::UInt32);
-      p->buffers.push_back(std::move(*ib));
-      prims.push_back(p.get());
-      gs->primitives_.push_back(std::move(p));
+    for (const Primitive& prim : scene.meshes[mi].primitives) {
+      auto p = uploadPrimitive(prim, meshScale[mi], sceneDiagonal);
+      if (!p) return p.error();
+      prims.push_back(p->get());
+      primitives_.push_back(std::move(*p));
     }
-    gs->meshes_.push_back(std::move(prims));
+    meshes_.push_back(std::move(prims));
   }
+  return {};
+}
 
+Status GpuScene::uploadMaterials(const Scene& scene) {
   // Materials, then the glTF default material (white, metallic 1, roughness 1) last.
   for (const Material& m : scene.materials) {
     GpuMaterial gm;
@@ -141,33 +139,34 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
     for (int slot = 0; slot < kMaterialSlots; ++slot) {
       if (!refs[slot]->valid()) continue;
       const bool srgb = slot == 0 || slot == 4;  // base colour and emissive are sRGB
-      auto tex = gs->texture(scene, *refs[slot], srgb);
+      auto tex = texture(scene, *refs[slot], srgb);
       if (!tex) return tex.error();
       gm.textures[slot] = *tex;
       has[slot] = true;
     }
     gm.features = materialFeatures(m, has);
-    gs->materials_.push_back(std::move(gm));
+    materials_.push_back(std::move(gm));
   }
-  {
-    GpuMaterial fallbackMaterial;
-    const bool none[kMaterialSlots] = {};
-    fallbackMaterial.features = materialFeatures(fallbackMaterial.source, none);
-    gs->materials_.push_back(std::move(fallbackMaterial));
-  }
+  GpuMaterial fallbackMaterial;
+  const bool none[kMaterialSlots] = {};
+  fallbackMaterial.features = materialFeatures(fallbackMaterial.source, none);
+  materials_.push_back(std::move(fallbackMaterial));
   auto fallback =
       gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
   if (!fallback) return fallback.error();
   const uint8_t white[4] = {255, 255, 255, 255};
   fallback->upload(0, white, gl::DataType::UInt8);
-  gs->fallback_ = std::move(*fallback);
-  const int defaultMaterial = static_cast<int>(gs->materials_.size()) - 1;
+  fallback_ = std::move(*fallback);
+  return {};
+}
 
+void GpuScene::buildDrawItems(const Scene& scene) {
+  const int defaultMaterial = static_cast<int>(materials_.size()) - 1;
   for (const Instance& inst : scene.instances) {
-    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(gs->meshes_.size())) continue;
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(meshes_.size())) continue;
     const glm::mat3 upper(inst.world);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(upper));
-    for (GpuPrimitive* p : gs->meshes_[static_cast<size_t>(inst.mesh)]) {
+    for (GpuPrimitive* p : meshes_[static_cast<size_t>(inst.mesh)]) {
       DrawItem item;
       item.primitive = p;
       item.material =
@@ -184,24 +183,30 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
                            (c & 4) ? p->bounds.max.z : p->bounds.min.z);
           wb.extend(glm::vec3(inst.world * glm::vec4(corner, 1.0f)));
         }
-        gs->bounds_.extend(wb);
+        bounds_.extend(wb);
         item.center = wb.center();
       }
-      const Material& m = gs->materials_[static_cast<size_t>(item.material)].source;
+      const Material& m = materials_[static_cast<size_t>(item.material)].source;
       const bool blend = m.alphaMode == AlphaMode::Blend;
       const bool transmits = !blend && !m.unlit && m.transmission > 0.0f;
-      item.layer =
-          static_cast<int>(gs->opaque_.size() + gs->blended_.size() + gs->transmissive_.size());
-      (transmits ? gs->transmissive_ : blend ? gs->blended_ : gs->opaque_).push_back(item);
+      item.layer = static_cast<int>(opaque_.size() + blended_.size() + transmissive_.size());
+      (transmits ? transmissive_ : blend ? blended_ : opaque_).push_back(item);
     }
   }
   // Grouped by material features: each group is drawn with one specialised program. (BLEND
   // surfaces keep the scene's order; frame 1 sorts them back to front anyway.)
-  const auto byFeatures = [&gs](const DrawItem& a, const DrawItem& b) {
-    return gs->material(a.material).features < gs->material(b.material).features;
+  const auto byFeatures = [this](const DrawItem& a, const DrawItem& b) {
+    return material(a.material).features < material(b.material).features;
   };
-  std::stable_sort(gs->opaque_.begin(), gs->opaque_.end(), byFeatures);
-  std::stable_sort(gs->transmissive_.begin(), gs->transmissive_.end(), byFeatures);
+  std::stable_sort(opaque_.begin(), opaque_.end(), byFeatures);
+  std::stable_sort(transmissive_.begin(), transmissive_.end(), byFeatures);
+}
+
+Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
+  auto gs = std::make_unique<GpuScene>();
+  PN_TRY(gs->uploadMeshes(scene));
+  PN_TRY(gs->uploadMaterials(scene));
+  gs->buildDrawItems(scene);
   return gs;
 }
 

@@ -97,6 +97,11 @@ class GpuScene {
 
  private:
   Result<const gl::Texture2D*> texture(const Scene& scene, const TextureRef& ref, bool srgb);
+  // The parts of create(): vertex and index buffers, materials and their textures (the glTF
+  // default material last), and the draw lists (opaque, BLEND, transmissive).
+  Status uploadMeshes(const Scene& scene);
+  Status uploadMaterials(const Scene& scene);
+  void buildDrawItems(const Scene& scene);
 
   std::vector<std::unique_ptr<GpuPrimitive>> primitives_;  // per mesh, per primitive
   std::vector<std::vector<GpuPrimitive*>> meshes_;

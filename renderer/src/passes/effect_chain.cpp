@@ -4,19 +4,25 @@
 
 namespace penumbra::passes {
 
+Result<ColorTarget> makeEffectTarget(int width, int height, const char* what) {
+  auto tex = gl::Texture2D::create(
+      {.width = width,
+       .height = height,
+       .format = gl::PixelFormat::RGBA16F,
+       .sampler = {.minFilter = gl::Filter::Linear, .magFilter = gl::Filter::Linear}});
+  if (!tex) return makeError(std::string(what) + ": " + tex.message());
+  ColorTarget t{std::move(*tex), gl::Framebuffer::create()};
+  t.framebuffer.attachColor(0, t.color);
+  PN_TRY(t.framebuffer.checkComplete());
+  return t;
+}
+
 Status EffectChain::ensureTargets(int width, int height) {
   if (targets_[0].color && width_ == width && height_ == height) return {};
   for (ColorTarget& t : targets_) {
-    auto tex = gl::Texture2D::create(
-        {.width = width,
-         .height = height,
-         .format = gl::PixelFormat::RGBA16F,
-         .sampler = {.minFilter = gl::Filter::Linear, .magFilter = gl::Filter::Linear}});
-    if (!tex) return makeError("effect target: " + tex.message());
-    t.color = std::move(*tex);
-    t.framebuffer = gl::Framebuffer::create();
-    t.framebuffer.attachColor(0, t.color);
-    PN_TRY(t.framebuffer.checkComplete());
+    auto made = makeEffectTarget(width, height, "effect target");
+    if (!made) return made.error();
+    t = std::move(*made);
   }
   width_ = width;
   height_ = height;

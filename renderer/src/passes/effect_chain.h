@@ -36,6 +36,9 @@ class Effect {
                        const ColorTarget& out) = 0;
 };
 
+// An RGBA16F target with linear filtering, as effects draw into (`what` names it in errors).
+Result<ColorTarget> makeEffectTarget(int width, int height, const char* what);
+
 using EffectFactory = std::unique_ptr<Effect> (*)();
 // The effects in the order they run (passes/effects/registry.cpp).
 std::span<const EffectFactory> registeredEffects();

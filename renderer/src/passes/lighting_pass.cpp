@@ -381,6 +381,115 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
   return {};
 }
 
+// The frame's depth: a depth-only pass of the same geometry (same vertex shader, invariant
+// positions, the same MASK and coverage decisions), so that the lighting draws with LEQUAL shade
+// each pixel once however much geometry overlaps it. Overdraw cost llvmpipe a third of the
+// kitchen's lighting pass and a sixth of the Cornell box's.
+void LightingPass::drawDepth(const LightingBatch& b) {
+  const gl::Program& dp = *depthOnly_;
+  dp.use();
+  dp.set("uViewProj", b.camera->projection * b.camera->view);
+  dp.set("uView", b.camera->view);
+  dp.set("uCoverageFrame", b.coverageFrame);
+  dp.set("uCoverageStream", 0);
+  drawItems(dp, *b.scene, b.scene->opaque(), true, {.colorWrite = false});
+  if (b.coverageFrame >= 0)
+    drawItems(dp, *b.scene, b.scene->blended(), true, {.colorWrite = false});
+}
+
+// The probe volume's lookups for this view, where this frame's depth pass left the surfaces.
+Status LightingPass::writeProbeCache(const LightingBatch& b, const glm::mat3& envRotation) {
+  PN_TRY(b.targets->ensureProbeCache());
+  b.targets->probeCacheFramebuffer.bind();
+  gl::apply({.depthWrite = false});  // the depth pass left colour writes off
+  gl::clearBufferFloat(0, 0, 0, 0, 0);
+  gl::clearBufferFloat(1, 0, 0, 0, 0);
+  LightingBatch writing = b;
+  writing.readProbeCache = false;  // the targets being written are not sampled
+  writing.accumulateFrame = 0;
+  const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
+  const uint32_t cachePass = kCacheWrite | passBits(writing, false, false, false);
+  gl::PipelineState cacheState;
+  cacheState.depthTest = gl::DepthTest::LessEqual;
+  cacheState.depthWrite = false;
+  PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
+  if (b.coverageFrame >= 0) {
+    PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->blended(), cacheState, setupCache));
+  }
+  return {};
+}
+
+// The lights' unshadowed shading where this frame's depth pass left the surfaces, a layer a
+// light, added with the batch's weight (the mean over the view's first frames).
+Status LightingPass::writeLightCache(const LightingBatch& b, const glm::mat3& envRotation) {
+  const int layers = static_cast<int>(b.cachedLights.size());
+  PN_TRY(b.targets->ensureLightCache(layers));
+  b.targets->lightCacheFramebuffer.bind();
+  if (b.clearLightCache) {
+    gl::apply({.depthWrite = false});
+    for (int i = 0; i < layers; ++i) gl::clearBufferFloat(i, 0, 0, 0, 0);
+  }
+  LightingBatch writing = b;
+  writing.readLightCache = false;
+  writing.accumulateFrame = 0;
+  writing.area = b.cachedLights;
+  writing.punctual.clear();
+  gl::PipelineState cacheState;
+  cacheState.depthTest = gl::DepthTest::LessEqual;
+  cacheState.depthWrite = false;
+  cacheState.blend = gl::Blend::Additive;
+  const auto setupCache = [&](const gl::Program& p) {
+    setUniforms(p, writing, envRotation);
+    p.set("uLightCacheWeight", b.lightCacheWeight);
+  };
+  const uint32_t cachePass =
+      (static_cast<uint32_t>(layers) << kCachedLightsShift) | passBits(writing, false, true, false);
+  return drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache);
+}
+
+// BLEND surfaces without stochastic coverage: alpha-blended back to front over the frame.
+Status LightingPass::drawBlendedSorted(const LightingBatch& b, uint32_t pass,
+                                       const std::function<void(const gl::Program&)>& setup) {
+  const CameraMatrices& cm = *b.camera;
+  std::vector<DrawItem> sorted = b.scene->blended();
+  std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& x, const DrawItem& y) {
+    // Back to front: by distance from the eye, or along the parallel rays (orthographic).
+    auto far = [&](const glm::vec3& c) {
+      return cm.viewOrigin.w > 0.5f ? glm::distance(c, cm.position)
+                                    : -glm::dot(c, glm::vec3(cm.viewOrigin));
+    };
+    return far(x.center) > far(y.center);
+  });
+  // (The background pass left its own program bound: setup makes each current again.)
+  return drawByMaterial(pass, *b.scene, sorted, {.depthWrite = false, .blend = gl::Blend::Alpha},
+                        setup);
+}
+
+// Transmissive surfaces' own light, batch by batch, beside the frame (which keeps showing what
+// is behind them until composeTransmission). Every layer in front of the opaque scene adds its
+// light: a back wall seen through a front one.
+Status LightingPass::drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation) {
+  PN_TRY(b.targets->ensureTransmission());
+  b.targets->glassLight.framebuffer.bind();
+  if (b.first) {
+    gl::apply({});
+    gl::clearBufferFloat(0, 0, 0, 0, 0);
+  }
+  LightingBatch glass = b;
+  glass.readProbeCache = false;  // the caches hold what lies behind
+  glass.readLightCache = false;
+  gl::PipelineState own;
+  own.depthTest = gl::DepthTest::LessEqual;
+  own.depthWrite = false;
+  own.blend = gl::Blend::Additive;
+  const uint32_t glassPass =
+      kTransmitOwn | passBits(glass, b.occlusion, !b.area.empty(), !b.punctual.empty());
+  PN_TRY(drawByMaterial(glassPass, *b.scene, b.scene->transmissive(), own,
+                        [&](const gl::Program& p) { setUniforms(p, glass, envRotation); }));
+  b.targets->frame.framebuffer.bind();
+  return {};
+}
+
 Status LightingPass::draw(const LightingBatch& b) {
   PN_CHECK(b.accumulateFrame == 0 ||
                (b.first && b.accumulateFrame > 1 && (!b.scene || b.scene->transmissive().empty())),
@@ -408,68 +517,13 @@ Status LightingPass::draw(const LightingBatch& b) {
     if (b.first) drawBackground(b, envRotation);
     return {};
   }
-  // Depth first: a depth-only pass of the same geometry (same vertex shader, invariant
-  // positions, the same MASK and coverage decisions), then the lighting draws with LEQUAL, so
-  // each pixel is shaded once however much geometry overlaps it. Overdraw cost llvmpipe a
-  // third of the kitchen's lighting pass and a sixth of the Cornell box's.
-  if (b.first) {
-    const gl::Program& dp = *depthOnly_;
-    dp.use();
-    dp.set("uViewProj", b.camera->projection * b.camera->view);
-    dp.set("uView", b.camera->view);
-    dp.set("uCoverageFrame", b.coverageFrame);
-    dp.set("uCoverageStream", 0);
-    drawItems(dp, *b.scene, b.scene->opaque(), true, {.colorWrite = false});
-    if (b.coverageFrame >= 0)
-      drawItems(dp, *b.scene, b.scene->blended(), true, {.colorWrite = false});
-  }
+  if (b.first) drawDepth(b);
   if (b.writeProbeCache && b.probes) {
-    // The volume's lookups for this view, where this frame's depth pass left the surfaces.
-    PN_TRY(b.targets->ensureProbeCache());
-    b.targets->probeCacheFramebuffer.bind();
-    gl::apply({.depthWrite = false});  // the depth pass left colour writes off
-    gl::clearBufferFloat(0, 0, 0, 0, 0);
-    gl::clearBufferFloat(1, 0, 0, 0, 0);
-    LightingBatch writing = b;
-    writing.readProbeCache = false;  // the targets being written are not sampled
-    writing.accumulateFrame = 0;
-    const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
-    const uint32_t cachePass = kCacheWrite | passBits(writing, false, false, false);
-    gl::PipelineState cacheState;
-    cacheState.depthTest = gl::DepthTest::LessEqual;
-    cacheState.depthWrite = false;
-    PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
-    if (b.coverageFrame >= 0) {
-      PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->blended(), cacheState, setupCache));
-    }
+    PN_TRY(writeProbeCache(b, envRotation));
     out.bind();
   }
   if (b.writeLightCache && !b.cachedLights.empty()) {
-    // The lights' unshadowed shading where this frame's depth pass left the surfaces, a
-    // layer a light, added with the batch's weight (the mean over the view's first frames).
-    const int layers = static_cast<int>(b.cachedLights.size());
-    PN_TRY(b.targets->ensureLightCache(layers));
-    b.targets->lightCacheFramebuffer.bind();
-    if (b.clearLightCache) {
-      gl::apply({.depthWrite = false});
-      for (int i = 0; i < layers; ++i) gl::clearBufferFloat(i, 0, 0, 0, 0);
-    }
-    LightingBatch writing = b;
-    writing.readLightCache = false;
-    writing.accumulateFrame = 0;
-    writing.area = b.cachedLights;
-    writing.punctual.clear();
-    gl::PipelineState cacheState;
-    cacheState.depthTest = gl::DepthTest::LessEqual;
-    cacheState.depthWrite = false;
-    cacheState.blend = gl::Blend::Additive;
-    const auto setupCache = [&](const gl::Program& p) {
-      setUniforms(p, writing, envRotation);
-      p.set("uLightCacheWeight", b.lightCacheWeight);
-    };
-    const uint32_t cachePass = (static_cast<uint32_t>(layers) << kCachedLightsShift) |
-                               passBits(writing, false, true, false);
-    PN_TRY(drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache));
+    PN_TRY(writeLightCache(b, envRotation));
     out.bind();
   }
   const uint32_t pass = passBits(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
@@ -485,43 +539,9 @@ Status LightingPass::draw(const LightingBatch& b) {
     PN_TRY(drawByMaterial(pass, *b.scene, b.scene->blended(), opaque, setup));
   if (b.first) drawBackground(b, envRotation);
   if (b.first && b.coverageFrame < 0 && !b.scene->blended().empty()) {
-    const CameraMatrices& cm = *b.camera;
-    std::vector<DrawItem> sorted = b.scene->blended();
-    std::sort(sorted.begin(), sorted.end(), [&](const DrawItem& x, const DrawItem& y) {
-      // Back to front: by distance from the eye, or along the parallel rays (orthographic).
-      auto far = [&](const glm::vec3& c) {
-        return cm.viewOrigin.w > 0.5f ? glm::distance(c, cm.position)
-                                      : -glm::dot(c, glm::vec3(cm.viewOrigin));
-      };
-      return far(x.center) > far(y.center);
-    });
-    // (The background pass left its own program bound: setup makes each current again.)
-    PN_TRY(drawByMaterial(pass, *b.scene, sorted, {.depthWrite = false, .blend = gl::Blend::Alpha},
-                          setup));
+    PN_TRY(drawBlendedSorted(b, pass, setup));
   }
-  if (!b.scene->transmissive().empty()) {
-    // Transmissive surfaces' own light, batch by batch, beside the frame (which keeps showing
-    // what is behind them until composeTransmission). Every layer in front of the opaque
-    // scene adds its light: a back wall seen through a front one.
-    PN_TRY(b.targets->ensureTransmission());
-    b.targets->glassLight.framebuffer.bind();
-    if (b.first) {
-      gl::apply({});
-      gl::clearBufferFloat(0, 0, 0, 0, 0);
-    }
-    LightingBatch glass = b;
-    glass.readProbeCache = false;  // the caches hold what lies behind
-    glass.readLightCache = false;
-    gl::PipelineState own;
-    own.depthTest = gl::DepthTest::LessEqual;
-    own.depthWrite = false;
-    own.blend = gl::Blend::Additive;
-    const uint32_t glassPass =
-        kTransmitOwn | passBits(glass, b.occlusion, !b.area.empty(), !b.punctual.empty());
-    PN_TRY(drawByMaterial(glassPass, *b.scene, b.scene->transmissive(), own,
-                          [&](const gl::Program& p) { setUniforms(p, glass, envRotation); }));
-    b.targets->frame.framebuffer.bind();
-  }
+  if (!b.scene->transmissive().empty()) PN_TRY(drawTransmissiveOwn(b, envRotation));
   return {};
 }
 

@@ -165,6 +165,14 @@ class LightingPass {
                         gl::PipelineState state,
                         const std::function<void(const gl::Program&)>& setup, int instances = 0);
   void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
+  // The parts of draw(): the depth-only pass, the per-view caches' writes, the sorted BLEND
+  // surfaces and the transmissive surfaces' own light.
+  void drawDepth(const LightingBatch& b);
+  Status writeProbeCache(const LightingBatch& b, const glm::mat3& envRotation);
+  Status writeLightCache(const LightingBatch& b, const glm::mat3& envRotation);
+  Status drawBlendedSorted(const LightingBatch& b, uint32_t pass,
+                           const std::function<void(const gl::Program&)>& setup);
+  Status drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
                       const CameraMatrices& camera, float blur, float alpha);

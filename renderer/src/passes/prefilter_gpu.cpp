@@ -30,15 +30,9 @@ bool gpuPrefilterIsFaster() {
   return true;
 }
 
-Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterOptions& options) {
-  // The sun leaves the panorama first, as in prefilterCpu.
-  Image withoutSun;
-  std::optional<ibl::Sun> sun;
-  if (options.sunThreshold != 0.0f) {
-    withoutSun = input;
-    sun = ibl::extractSun(withoutSun, {.threshold = options.sunThreshold});
-  }
-  const Image& panorama = sun ? withoutSun : input;
+namespace {
+
+Status checkInputs(const Image& panorama, const ibl::PrefilterOptions& options) {
   if (panorama.width != 2 * panorama.height || panorama.height < 1) {
     return makeError("expected a 2:1 equirectangular panorama, got " +
                      std::to_string(panorama.width) + "x" + std::to_string(panorama.height));
@@ -47,14 +41,11 @@ Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterO
       options.minFaceSize > options.faceSize) {
     return makeError("face sizes must be powers of two with minFaceSize <= faceSize");
   }
-  const gl::Capabilities caps = gl::queryCapabilities(false);
-  const bool full = caps.colorBufferFloat && caps.floatLinear;
-  const gl::PixelFormat format = full ? gl::PixelFormat::RGBA32F : gl::PixelFormat::RGBA16F;
-  if (!full && !caps.colorBufferHalfFloat) {
-    return makeError("the GPU prefilter needs renderable float textures");
-  }
+  return {};
+}
 
-  // Panorama as RGBA float with a full mip chain (box-filtered pyramid for minification).
+// The panorama as RGBA float with a full mip chain (box-filtered pyramid for minification).
+Result<gl::Texture2D> uploadPanorama(const Image& panorama, gl::PixelFormat format) {
   std::vector<float> rgba(static_cast<size_t>(panorama.width) * panorama.height * 4, 1.0f);
   for (size_t i = 0, n = static_cast<size_t>(panorama.width) * panorama.height; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
@@ -72,6 +63,30 @@ Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterO
   if (!pano) return makeError("panorama texture: " + pano.message());
   pano->upload(0, rgba.data(), gl::DataType::Float);
   pano->generateMipmaps();
+  return std::move(*pano);
+}
+
+}  // namespace
+
+Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterOptions& options) {
+  // The sun leaves the panorama first, as in prefilterCpu.
+  Image withoutSun;
+  std::optional<ibl::Sun> sun;
+  if (options.sunThreshold != 0.0f) {
+    withoutSun = input;
+    sun = ibl::extractSun(withoutSun, {.threshold = options.sunThreshold});
+  }
+  const Image& panorama = sun ? withoutSun : input;
+  PN_TRY(checkInputs(panorama, options));
+  const gl::Capabilities caps = gl::queryCapabilities(false);
+  const bool full = caps.colorBufferFloat && caps.floatLinear;
+  const gl::PixelFormat format = full ? gl::PixelFormat::RGBA32F : gl::PixelFormat::RGBA16F;
+  if (!full && !caps.colorBufferHalfFloat) {
+    return makeError("the GPU prefilter needs renderable float textures");
+  }
+
+  auto pano = uploadPanorama(panorama, format);
+  if (!pano) return pano.error();
 
   const int size = options.faceSize;
   const int mips = ibl::mipCountFor(size, options.minFaceSize);

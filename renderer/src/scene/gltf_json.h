@@ -162,7 +162,8 @@ class Parser {
     for (int i = 0; i < N; ++i) {
       const json& e = (*v)[static_cast<size_t>(i)];
       if (!e.is_number() || !finiteFloat(e.get<double>())) {
-        fail(path + "." + key, "must contain only finite numbers within float range (|x| <= 3.4e38)");
+        fail(path + "." + key,
+             "must contain only finite numbers within float range (|x| <= 3.4e38)");
         return false;
       }
       out[i] = static_cast<float>(e.get<double>());
@@ -215,5 +216,12 @@ void forEach(Parser& p, const json& root, const char* key, Fn&& fn) {
     fn(e, path, i);
   }
 }
+
+// Parses the 'materials' array into doc.materials (gltf_parse_materials.cpp); texture indices are
+// checked against textureCount.
+struct Document;
+struct LoadContext;
+void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx,
+                    size_t textureCount);
 
 }  // namespace penumbra::gltf

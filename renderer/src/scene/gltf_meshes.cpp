@@ -74,25 +74,10 @@ std::vector<uint32_t> triangulate(const std::vector<uint32_t>& s, int mode, size
   return tris;
 }
 
-Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadContext& ctx,
-                                   const std::string& what) {
-  std::optional<DecodedDraco> draco;
-  if (pd.draco) {
-    auto pos = pd.attributes.find("POSITION");
-    const bool hasFallback = pos != pd.attributes.end() &&
-                             doc.accessors[static_cast<size_t>(pos->second)].bufferView >= 0;
-    // Decoded whenever a decoder is there (natively always; in the browser once
-    // web/lib/decoders.mjs has loaded it). Without one, uncompressed fallback data is read when
-    // the file has it (the extension was optional), and otherwise decodeDraco reports the error.
-    if (hasDraco() || !hasFallback) {
-      auto decoded = decodeDraco(doc, pd, ctx, what);
-      if (!decoded.ok()) return decoded.error();
-      draco = std::move(decoded).value();
-    }
-  }
-  AttributeSource src{doc, pd, ctx, what, draco ? &*draco : nullptr};
-
-  Primitive prim;
+// The primitive's vertex attributes (POSITION required; the others, where present, of its
+// length).
+Status readAttributes(AttributeSource& src, Primitive& prim, LoadContext& ctx,
+                      const std::string& what) {
   int comps = 0;
   auto positions = src.get("POSITION", {3}, comps);
   if (!positions.ok()) return positions.error();
@@ -141,39 +126,14 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
     }
     PN_TRY(checkCount("COLOR_0", prim.colors.size()));
   }
+  return {};
+}
 
-  // Index sequence in the primitive's topology.
-  std::vector<uint32_t> sequence;
-  const bool indexed = draco.has_value() || pd.indices >= 0;
-  if (draco) {
-    sequence = std::move(draco->indices);
-  } else if (pd.indices >= 0) {
-    auto idx = readIndices(doc, pd.indices, ctx, what + " indices");
-    if (!idx.ok()) return idx.error();
-    sequence = std::move(idx).value();
-  } else {
-    PN_TRY(ctx.reserve(vertexCount * 4, what + " indices"));
-    sequence.resize(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i) sequence[i] = static_cast<uint32_t>(i);
-  }
-  for (size_t i = 0; i < sequence.size(); ++i) {
-    if (sequence[i] >= vertexCount) {
-      return ctx.error(what + ": index " + std::to_string(sequence[i]) + " (at position " +
-                       std::to_string(i) + ") is out of range of the vertex count " +
-                       std::to_string(vertexCount));
-    }
-  }
-  size_t leftover = 0;
-  // Draco always decodes to a triangle list, whatever the primitive's mode says.
-  const int mode = draco ? 4 : pd.mode;
-  if (mode != 4) PN_TRY(ctx.reserve(sequence.size() * 12, what + " triangulated indices"));
-  std::vector<uint32_t> tris = triangulate(sequence, mode, leftover);
-  if (leftover) {
-    ctx.warn(what + ": " + std::to_string(leftover) +
-             " trailing indices do not form a triangle; ignored");
-  }
-
-  // Triangles touching a non-finite position would poison bounds and rasterisation.
+// Drops the triangles touching a non-finite position: they would poison bounds and
+// rasterisation.
+void dropNonFinite(std::vector<uint32_t>& tris, const Primitive& prim, LoadContext& ctx,
+                   const std::string& what) {
+  const size_t vertexCount = prim.positions.size();
   std::vector<bool> finite(vertexCount);
   for (size_t v = 0; v < vertexCount; ++v) {
     const glm::vec3& p = prim.positions[v];
@@ -193,9 +153,12 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
     ctx.warn(what + ": " + std::to_string(dropped) +
              " triangle(s) with non-finite (NaN or infinite) positions dropped");
   }
-  prim.indices = std::move(tris);
-  prim.material = pd.material;
+}
 
+// Normals (generated flat or smooth where missing, else normalised) and tangents (generated
+// for a normal map, else the clearcoat's, where missing).
+Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& prim, bool indexed,
+                     int mode, LoadContext& ctx, const std::string& what) {
   if (prim.normals.empty()) {
     // Without indices the file gives no sharing information: flat normals, as glTF asks.
     // Non-indexed strips and fans share vertices, so unweld them first.
@@ -235,6 +198,67 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
   } else {
     for (glm::vec4& t : prim.tangents) t.w = t.w < 0.0f ? -1.0f : 1.0f;
   }
+  return {};
+}
+
+Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadContext& ctx,
+                                   const std::string& what) {
+  std::optional<DecodedDraco> draco;
+  if (pd.draco) {
+    auto pos = pd.attributes.find("POSITION");
+    const bool hasFallback = pos != pd.attributes.end() &&
+                             doc.accessors[static_cast<size_t>(pos->second)].bufferView >= 0;
+    // Decoded whenever a decoder is there (natively always; in the browser once
+    // web/lib/decoders.mjs has loaded it). Without one, uncompressed fallback data is read when
+    // the file has it (the extension was optional), and otherwise decodeDraco reports the error.
+    if (hasDraco() || !hasFallback) {
+      auto decoded = decodeDraco(doc, pd, ctx, what);
+      if (!decoded.ok()) return decoded.error();
+      draco = std::move(decoded).value();
+    }
+  }
+  AttributeSource src{doc, pd, ctx, what, draco ? &*draco : nullptr};
+
+  Primitive prim;
+  PN_TRY(readAttributes(src, prim, ctx, what));
+  const size_t vertexCount = prim.positions.size();
+
+  // Index sequence in the primitive's topology.
+  std::vector<uint32_t> sequence;
+  const bool indexed = draco.has_value() || pd.indices >= 0;
+  if (draco) {
+    sequence = std::move(draco->indices);
+  } else if (pd.indices >= 0) {
+    auto idx = readIndices(doc, pd.indices, ctx, what + " indices");
+    if (!idx.ok()) return idx.error();
+    sequence = std::move(idx).value();
+  } else {
+    PN_TRY(ctx.reserve(vertexCount * 4, what + " indices"));
+    sequence.resize(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) sequence[i] = static_cast<uint32_t>(i);
+  }
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    if (sequence[i] >= vertexCount) {
+      return ctx.error(what + ": index " + std::to_string(sequence[i]) + " (at position " +
+                       std::to_string(i) + ") is out of range of the vertex count " +
+                       std::to_string(vertexCount));
+    }
+  }
+  size_t leftover = 0;
+  // Draco always decodes to a triangle list, whatever the primitive's mode says.
+  const int mode = draco ? 4 : pd.mode;
+  if (mode != 4) PN_TRY(ctx.reserve(sequence.size() * 12, what + " triangulated indices"));
+  std::vector<uint32_t> tris = triangulate(sequence, mode, leftover);
+  if (leftover) {
+    ctx.warn(what + ": " + std::to_string(leftover) +
+             " trailing indices do not form a triangle; ignored");
+  }
+
+  dropNonFinite(tris, prim, ctx, what);
+  prim.indices = std::move(tris);
+  prim.material = pd.material;
+
+  PN_TRY(finishShading(doc, pd, prim, indexed, mode, ctx, what));
 
   for (uint32_t i : prim.indices) prim.bounds.extend(prim.positions[i]);
   return prim;

@@ -13,173 +13,18 @@
 namespace penumbra::gltf {
 namespace {
 
-TextureInfoDesc parseTextureInfo(Parser& p, const json& info, const std::string& path,
-                                 size_t textureCount) {
-  TextureInfoDesc t;
-  t.texture = p.index(info, "index", path, textureCount, "textures", true);
-  t.texCoord = static_cast<int>(p.integer(info, "texCoord", path, 0, false, 0, 1 << 20));
-  const json* ext = p.object(info, "extensions", path);
-  const json* tt = ext ? p.object(*ext, "KHR_texture_transform", path + ".extensions") : nullptr;
-  if (tt) {
-    const std::string tp = path + ".extensions.KHR_texture_transform";
-    const glm::vec2 offset = p.vec<2>(*tt, "offset", tp, glm::vec2(0.0f));
-    const glm::vec2 scale = p.vec<2>(*tt, "scale", tp, glm::vec2(1.0f));
-    const float rotation = static_cast<float>(p.number(*tt, "rotation", tp, 0.0));
-    t.texCoord = static_cast<int>(p.integer(*tt, "texCoord", tp, t.texCoord, false, 0, 1 << 20));
-    // glm is column-major: mat3(col0, col1, col2). The rotation follows the Khronos sample
-    // viewer, three.js and the TextureTransformTest model (u' = c*u + s*v, v' = -s*u + c*v);
-    // the GLSL listing in the extension's README has the opposite sign (KhronosGroup/glTF#1563).
-    const float c = std::cos(rotation);
-    const float s = std::sin(rotation);
-    const glm::mat3 translation(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
-    const glm::mat3 rot(c, -s, 0, s, c, 0, 0, 0, 1);
-    const glm::mat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
-    t.transform = translation * rot * scaling;
-  }
-  return t;
-}
-
-// KHR_materials_ior, KHR_materials_specular (factors) and KHR_materials_unlit. Out-of-range
-// values are clamped with a warning naming the path; specular textures are not sampled (the
-// lighting shader has no texture unit left for them on WebGL2's 16): a warning says so.
-void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path, Material& m,
-                             LoadContext& ctx) {
-  if (const json* e = p.object(ext, "KHR_materials_ior", path)) {
-    const std::string ep = path + ".KHR_materials_ior";
-    const double ior = p.number(*e, "ior", ep, 1.5);
-    // The extension allows 0 (meaning an infinite index: F0 = 1) besides [1, inf).
-    if (ior == 0.0) {
-      m.ior = 3.4e38f;
-    } else if (ior < 1.0) {
-      ctx.warn(ep + ".ior: " + std::to_string(ior) + " is below 1; using 1");
-      m.ior = 1.0f;
-    } else {
-      m.ior = static_cast<float>(ior);
-    }
-  }
-  if (const json* e = p.object(ext, "KHR_materials_specular", path)) {
-    const std::string ep = path + ".KHR_materials_specular";
-    const double f = p.number(*e, "specularFactor", ep, 1.0);
-    if (f < 0.0 || f > 1.0) ctx.warn(ep + ".specularFactor: outside [0, 1]; clamped");
-    m.specularFactor = static_cast<float>(std::clamp(f, 0.0, 1.0));
-    m.specularColorFactor =
-        glm::max(p.vec<3>(*e, "specularColorFactor", ep, glm::vec3(1.0f)), glm::vec3(0.0f));
-    for (const char* t : {"specularTexture", "specularColorTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
-    }
-  }
-  if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
-  if (const json* e = p.object(ext, "KHR_materials_clearcoat", path)) {
-    const std::string ep = path + ".KHR_materials_clearcoat";
-    const double c = p.number(*e, "clearcoatFactor", ep, 0.0);
-    const double r = p.number(*e, "clearcoatRoughnessFactor", ep, 0.0);
-    if (c < 0.0 || c > 1.0) ctx.warn(ep + ".clearcoatFactor: outside [0, 1]; clamped");
-    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
-    m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
-    m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
-    for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
-    }
-  }
-  if (const json* e = p.object(ext, "KHR_materials_sheen", path)) {
-    const std::string ep = path + ".KHR_materials_sheen";
-    const glm::vec3 c = p.vec<3>(*e, "sheenColorFactor", ep, glm::vec3(0.0f));
-    const double r = p.number(*e, "sheenRoughnessFactor", ep, 0.0);
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      ctx.warn(ep + ".sheenColorFactor: outside [0, 1]; clamped");
-    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".sheenRoughnessFactor: outside [0, 1]; clamped");
-    m.sheenColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
-    m.sheenRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
-    for (const char* t : {"sheenColorTexture", "sheenRoughnessTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
-    }
-  }
-}
-
-// KHR_materials_transmission and KHR_materials_volume (factors; their textures are not sampled,
-// like the other extensions' textures). Thickness is in the mesh's own units (the renderer
-// scales it by the instance's transform); a missing attenuationDistance means none.
-void parseTransmission(Parser& p, const json& ext, const std::string& path, Material& m,
-                       LoadContext& ctx) {
-  if (const json* e = p.object(ext, "KHR_materials_transmission", path)) {
-    const std::string ep = path + ".KHR_materials_transmission";
-    const double t = p.number(*e, "transmissionFactor", ep, 0.0);
-    if (t < 0.0 || t > 1.0) ctx.warn(ep + ".transmissionFactor: outside [0, 1]; clamped");
-    m.transmission = static_cast<float>(std::clamp(t, 0.0, 1.0));
-    if (p.object(*e, "transmissionTexture", ep))
-      ctx.warn(ep + ".transmissionTexture is not sampled (its factor applies)");
-  }
-  if (const json* e = p.object(ext, "KHR_materials_volume", path)) {
-    const std::string ep = path + ".KHR_materials_volume";
-    const double th = p.number(*e, "thicknessFactor", ep, 0.0);
-    if (th < 0.0) ctx.warn(ep + ".thicknessFactor: negative; using 0 (thin-walled)");
-    m.thickness = static_cast<float>(std::max(th, 0.0));
-    const double d = p.number(*e, "attenuationDistance", ep, 0.0);
-    if (e->contains("attenuationDistance") && !(d > 0.0))
-      ctx.warn(ep + ".attenuationDistance: not positive; no attenuation");
-    m.attenuationDistance = d > 0.0 && std::isfinite(d) ? static_cast<float>(d) : 0.0f;
-    const glm::vec3 c = p.vec<3>(*e, "attenuationColor", ep, glm::vec3(1.0f));
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      ctx.warn(ep + ".attenuationColor: outside [0, 1]; clamped");
-    m.attenuationColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
-    if (p.object(*e, "thicknessTexture", ep))
-      ctx.warn(ep + ".thicknessTexture is not sampled (its factor applies)");
-  }
-}
-
 LightType areaType(const std::string& s) {
   return s == "disk" ? LightType::Disk : LightType::Rect;
 }
 
-}  // namespace
+// The sizes of the top-level arrays, which every index is checked against.
+struct Counts {
+  size_t buffers, views, accessors, meshes, nodes, materials, textures, images, samplers, cameras;
+};
 
-Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
-  // Some writers pad the GLB JSON chunk with NULs instead of spaces.
-  while (!text.empty() && (text.back() == '\0' || text.back() == ' ')) text.remove_suffix(1);
-  json root;
-  try {
-    root = json::parse(text.begin(), text.end());
-  } catch (const json::exception& e) {
-    // nlohmann's message is one line: "[json.exception.parse_error.101] parse error at ...".
-    std::string what = e.what();
-    const size_t bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    return ctx.error("bad JSON: " + what);
-  }
-  if (!root.is_object()) return ctx.error("bad JSON: the top level is not an object");
-
-  Parser p;
-  Document doc;
-  const json* asset = p.object(root, "asset", "glTF");
-  if (!asset) return ctx.error("not a glTF file (no 'asset' object)");
-  const std::string version = p.string(*asset, "version", "asset");
-  if (!version.empty() && version[0] != '2') {
-    return ctx.error("unsupported glTF version '" + version + "' (only 2.x is supported)");
-  }
-
-  auto strings = [&](const char* key, std::vector<std::string>& out) {
-    if (const json* arr = p.array(root, key, "glTF")) {
-      for (const json& e : *arr) {
-        if (e.is_string()) out.push_back(e.get<std::string>());
-      }
-    }
-  };
-  strings("extensionsUsed", doc.extensionsUsed);
-  strings("extensionsRequired", doc.extensionsRequired);
-
-  const size_t nBuffers = arraySize(root, "buffers");
-  const size_t nViews = arraySize(root, "bufferViews");
-  const size_t nAccessors = arraySize(root, "accessors");
-  const size_t nMeshes = arraySize(root, "meshes");
-  const size_t nNodes = arraySize(root, "nodes");
-  const size_t nMaterials = arraySize(root, "materials");
-  const size_t nTextures = arraySize(root, "textures");
-  const size_t nImages = arraySize(root, "images");
-  const size_t nSamplers = arraySize(root, "samplers");
-  const size_t nCameras = arraySize(root, "cameras");
-
+// Parses the 'buffers' array.
+void parseBuffers(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                  [[maybe_unused]] const Counts& count) {
   forEach(p, root, "buffers", [&](const json& o, const std::string& path, size_t) {
     BufferDesc b;
     b.byteLength = static_cast<uint64_t>(p.integer(o, "byteLength", path, 0, true));
@@ -194,10 +39,14 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     doc.buffers.push_back(b);
   });
+}
 
+// Parses the 'bufferViews' array.
+void parseBufferViews(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                      [[maybe_unused]] const Counts& count) {
   forEach(p, root, "bufferViews", [&](const json& o, const std::string& path, size_t) {
     BufferViewDesc v;
-    v.buffer = p.index(o, "buffer", path, nBuffers, "buffers", true);
+    v.buffer = p.index(o, "buffer", path, count.buffers, "buffers", true);
     v.byteOffset = static_cast<uint64_t>(p.integer(o, "byteOffset", path, 0));
     v.byteLength = static_cast<uint64_t>(p.integer(o, "byteLength", path, 0, true));
     v.byteStride = static_cast<uint64_t>(p.integer(o, "byteStride", path, 0, false, 0, 252));
@@ -205,7 +54,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       if (const json* m = p.object(*ext, "EXT_meshopt_compression", path + ".extensions")) {
         const std::string mp = path + ".extensions.EXT_meshopt_compression";
         MeshoptDesc d;
-        d.buffer = p.index(*m, "buffer", mp, nBuffers, "buffers", true);
+        d.buffer = p.index(*m, "buffer", mp, count.buffers, "buffers", true);
         d.byteOffset = static_cast<uint64_t>(p.integer(*m, "byteOffset", mp, 0));
         d.byteLength = static_cast<uint64_t>(p.integer(*m, "byteLength", mp, 0, true));
         d.byteStride = static_cast<uint64_t>(p.integer(*m, "byteStride", mp, 0, true, 1, 256));
@@ -237,10 +86,14 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     doc.bufferViews.push_back(v);
   });
+}
 
+// Parses the 'accessors' array.
+void parseAccessors(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                    [[maybe_unused]] const Counts& count) {
   forEach(p, root, "accessors", [&](const json& o, const std::string& path, size_t) {
     AccessorDesc a;
-    a.bufferView = p.index(o, "bufferView", path, nViews, "bufferViews");
+    a.bufferView = p.index(o, "bufferView", path, count.views, "bufferViews");
     a.byteOffset = static_cast<uint64_t>(p.integer(o, "byteOffset", path, 0));
     a.componentType = static_cast<int>(p.integer(o, "componentType", path, 0, true));
     if (!p.failed() && componentSize(a.componentType) == 0) {
@@ -261,18 +114,24 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       if (!idx || !val) {
         p.fail(sp, "needs 'indices' and 'values' objects");
       } else {
-        d.indicesView = p.index(*idx, "bufferView", sp + ".indices", nViews, "bufferViews", true);
+        d.indicesView =
+            p.index(*idx, "bufferView", sp + ".indices", count.views, "bufferViews", true);
         d.indicesOffset = static_cast<uint64_t>(p.integer(*idx, "byteOffset", sp + ".indices", 0));
         d.indicesComponentType =
             static_cast<int>(p.integer(*idx, "componentType", sp + ".indices", 0, true));
-        d.valuesView = p.index(*val, "bufferView", sp + ".values", nViews, "bufferViews", true);
+        d.valuesView =
+            p.index(*val, "bufferView", sp + ".values", count.views, "bufferViews", true);
         d.valuesOffset = static_cast<uint64_t>(p.integer(*val, "byteOffset", sp + ".values", 0));
       }
       a.sparse = d;
     }
     doc.accessors.push_back(a);
   });
+}
 
+// Parses the 'meshes' array.
+void parseMeshes(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                 [[maybe_unused]] const Counts& count) {
   forEach(p, root, "meshes", [&](const json& o, const std::string& path, size_t) {
     MeshDesc m;
     m.name = p.string(o, "name", path);
@@ -289,16 +148,16 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       }
       for (auto it = attrs->begin(); it != attrs->end(); ++it) {
         prim.attributes[it.key()] =
-            p.checkIndex(it.value(), pp + ".attributes." + it.key(), nAccessors, "accessors");
+            p.checkIndex(it.value(), pp + ".attributes." + it.key(), count.accessors, "accessors");
       }
-      prim.indices = p.index(po, "indices", pp, nAccessors, "accessors");
-      prim.material = p.index(po, "material", pp, nMaterials, "materials");
+      prim.indices = p.index(po, "indices", pp, count.accessors, "accessors");
+      prim.material = p.index(po, "material", pp, count.materials, "materials");
       prim.mode = static_cast<int>(p.integer(po, "mode", pp, 4, false, 0, 6));
       if (const json* ext = p.object(po, "extensions", pp)) {
         if (const json* d = p.object(*ext, "KHR_draco_mesh_compression", pp + ".extensions")) {
           const std::string dp = pp + ".extensions.KHR_draco_mesh_compression";
           DracoDesc draco;
-          draco.bufferView = p.index(*d, "bufferView", dp, nViews, "bufferViews", true);
+          draco.bufferView = p.index(*d, "bufferView", dp, count.views, "bufferViews", true);
           if (const json* da = p.object(*d, "attributes", dp)) {
             for (auto it = da->begin(); it != da->end(); ++it) {
               int64_t id = 0;
@@ -315,7 +174,12 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     doc.meshes.push_back(std::move(m));
   });
+}
 
+// Parses EXT_lights_area and KHR_lights_punctual (root extensions; before the nodes that refer to
+// them).
+void parseLights(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                 [[maybe_unused]] const Counts& count) {
   // Lights live in root extensions; parse them before the nodes that refer to them.
   const json* rootExt = p.object(root, "extensions", "glTF");
   if (const json* area = rootExt ? p.object(*rootExt, "EXT_lights_area", "extensions") : nullptr) {
@@ -372,18 +236,22 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
       }
     }
   }
+}
 
+// Parses the 'nodes' array.
+void parseNodes(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                [[maybe_unused]] const Counts& count) {
   forEach(p, root, "nodes", [&](const json& o, const std::string& path, size_t) {
     NodeDesc n;
     n.name = p.string(o, "name", path);
     if (const json* children = p.array(o, "children", path)) {
       for (size_t i = 0; i < children->size(); ++i) {
         n.children.push_back(p.checkIndex(
-            (*children)[i], path + ".children[" + std::to_string(i) + "]", nNodes, "nodes"));
+            (*children)[i], path + ".children[" + std::to_string(i) + "]", count.nodes, "nodes"));
       }
     }
-    n.mesh = p.index(o, "mesh", path, nMeshes, "meshes");
-    n.camera = p.index(o, "camera", path, nCameras, "cameras");
+    n.mesh = p.index(o, "mesh", path, count.meshes, "meshes");
+    n.camera = p.index(o, "camera", path, count.cameras, "cameras");
     if (const auto e = o.find("extras"); e != o.end() && e->is_object()) {
       n.lightProxy = e->contains("area_light_proxy");
     }
@@ -418,106 +286,59 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     doc.nodes.push_back(std::move(n));
   });
+}
 
+// Parses the 'scenes' array.
+void parseScenes(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                 [[maybe_unused]] const Counts& count) {
   forEach(p, root, "scenes", [&](const json& o, const std::string& path, size_t) {
     SceneDesc s;
     s.name = p.string(o, "name", path);
     if (const json* nodes = p.array(o, "nodes", path)) {
       for (size_t i = 0; i < nodes->size(); ++i) {
-        s.nodes.push_back(
-            p.checkIndex((*nodes)[i], path + ".nodes[" + std::to_string(i) + "]", nNodes, "nodes"));
+        s.nodes.push_back(p.checkIndex((*nodes)[i], path + ".nodes[" + std::to_string(i) + "]",
+                                       count.nodes, "nodes"));
       }
     }
     doc.scenes.push_back(std::move(s));
   });
-  doc.scene = p.index(root, "scene", "glTF", doc.scenes.size(), "scenes");
+}
 
-  forEach(p, root, "materials", [&](const json& o, const std::string& path, size_t) {
-    MaterialDesc md;
-    Material& m = md.material;
-    m.name = p.string(o, "name", path);
-    if (const json* pbr = p.object(o, "pbrMetallicRoughness", path)) {
-      const std::string pp = path + ".pbrMetallicRoughness";
-      m.baseColorFactor = p.vec<4>(*pbr, "baseColorFactor", pp, glm::vec4(1.0f));
-      m.metallicFactor = static_cast<float>(p.number(*pbr, "metallicFactor", pp, 1.0));
-      m.roughnessFactor = static_cast<float>(p.number(*pbr, "roughnessFactor", pp, 1.0));
-      if (const json* t = p.object(*pbr, "baseColorTexture", pp)) {
-        md.textures[kBaseColorSlot] = parseTextureInfo(p, *t, pp + ".baseColorTexture", nTextures);
-      }
-      if (const json* t = p.object(*pbr, "metallicRoughnessTexture", pp)) {
-        md.textures[kMetallicRoughnessSlot] =
-            parseTextureInfo(p, *t, pp + ".metallicRoughnessTexture", nTextures);
-      }
-    }
-    if (const json* t = p.object(o, "normalTexture", path)) {
-      md.textures[kNormalSlot] = parseTextureInfo(p, *t, path + ".normalTexture", nTextures);
-      m.normalScale = static_cast<float>(p.number(*t, "scale", path + ".normalTexture", 1.0));
-    }
-    if (const json* t = p.object(o, "occlusionTexture", path)) {
-      md.textures[kOcclusionSlot] = parseTextureInfo(p, *t, path + ".occlusionTexture", nTextures);
-      m.occlusionStrength =
-          static_cast<float>(p.number(*t, "strength", path + ".occlusionTexture", 1.0));
-    }
-    if (const json* t = p.object(o, "emissiveTexture", path)) {
-      md.textures[kEmissiveSlot] = parseTextureInfo(p, *t, path + ".emissiveTexture", nTextures);
-    }
-    m.emissiveFactor = p.vec<3>(o, "emissiveFactor", path, glm::vec3(0.0f));
-    const std::string alpha = p.string(o, "alphaMode", path, "OPAQUE");
-    if (alpha == "MASK") {
-      m.alphaMode = AlphaMode::Mask;
-    } else if (alpha == "BLEND") {
-      m.alphaMode = AlphaMode::Blend;
-    } else if (alpha != "OPAQUE") {
-      ctx.warn(path + ".alphaMode: unknown value '" + alpha + "', using OPAQUE");
-    }
-    m.alphaCutoff = static_cast<float>(p.number(o, "alphaCutoff", path, 0.5));
-    m.doubleSided = p.boolean(o, "doubleSided", path, false);
-    if (const json* ext = p.object(o, "extensions", path)) {
-      if (const json* es =
-              p.object(*ext, "KHR_materials_emissive_strength", path + ".extensions")) {
-        m.emissiveStrength = static_cast<float>(p.number(
-            *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
-      }
-      parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
-      parseTransmission(p, *ext, path + ".extensions", m, ctx);
-      // The coat's own normal map (the lighting shader's one spare texture unit).
-      const std::string cp = path + ".extensions.KHR_materials_clearcoat";
-      if (const json* cc = p.object(*ext, "KHR_materials_clearcoat", path + ".extensions")) {
-        if (const json* t = p.object(*cc, "clearcoatNormalTexture", cp)) {
-          md.textures[kClearcoatNormalSlot] =
-              parseTextureInfo(p, *t, cp + ".clearcoatNormalTexture", nTextures);
-          m.clearcoatNormalScale =
-              static_cast<float>(p.number(*t, "scale", cp + ".clearcoatNormalTexture", 1.0));
-        }
-      }
-    }
-    doc.materials.push_back(std::move(md));
-  });
-
+// Parses the 'textures' array.
+void parseTextures(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                   [[maybe_unused]] const Counts& count) {
   forEach(p, root, "textures", [&](const json& o, const std::string& path, size_t) {
     TextureDesc t;
-    t.source = p.index(o, "source", path, nImages, "images");
-    t.sampler = p.index(o, "sampler", path, nSamplers, "samplers");
+    t.source = p.index(o, "source", path, count.images, "images");
+    t.sampler = p.index(o, "sampler", path, count.samplers, "samplers");
     if (const json* ext = p.object(o, "extensions", path)) {
       const std::string ep = path + ".extensions.KHR_texture_basisu";
       if (const json* b = p.object(*ext, "KHR_texture_basisu", path + ".extensions"))
-        t.basisuSource = p.index(*b, "source", ep, nImages, "images", true);
+        t.basisuSource = p.index(*b, "source", ep, count.images, "images", true);
     }
     doc.textures.push_back(t);
   });
+}
 
+// Parses the 'images' array.
+void parseImages(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                 [[maybe_unused]] const Counts& count) {
   forEach(p, root, "images", [&](const json& o, const std::string& path, size_t) {
     ImageDesc im;
     im.name = p.string(o, "name", path);
     im.uri = p.string(o, "uri", path);
     im.mimeType = p.string(o, "mimeType", path);
-    im.bufferView = p.index(o, "bufferView", path, nViews, "bufferViews");
+    im.bufferView = p.index(o, "bufferView", path, count.views, "bufferViews");
     if (!p.failed() && im.uri.empty() && im.bufferView < 0) {
       p.fail(path, "needs a 'uri' or a 'bufferView'");
     }
     doc.images.push_back(std::move(im));
   });
+}
 
+// Parses the 'samplers' array.
+void parseSamplers(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                   [[maybe_unused]] const Counts& count) {
   forEach(p, root, "samplers", [&](const json& o, const std::string& path, size_t) {
     SamplerDesc s;
     s.magFilter = static_cast<int>(p.integer(o, "magFilter", path, s.magFilter));
@@ -526,7 +347,11 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     s.wrapT = static_cast<int>(p.integer(o, "wrapT", path, s.wrapT));
     doc.samplers.push_back(s);
   });
+}
 
+// Parses the 'cameras' array.
+void parseCameras(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
+                  [[maybe_unused]] const Counts& count) {
   forEach(p, root, "cameras", [&](const json& o, const std::string& path, size_t) {
     CameraDesc c;
     c.name = p.string(o, "name", path);
@@ -567,6 +392,78 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
     }
     doc.cameras.push_back(std::move(c));
   });
+}
+
+}  // namespace
+
+Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
+  // Some writers pad the GLB JSON chunk with NULs instead of spaces.
+  while (!text.empty() && (text.back() == '\0' || text.back() == ' ')) text.remove_suffix(1);
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    // nlohmann's message is one line: "[json.exception.parse_error.101] parse error at ...".
+    std::string what = e.what();
+    const size_t bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    return ctx.error("bad JSON: " + what);
+  }
+  if (!root.is_object()) return ctx.error("bad JSON: the top level is not an object");
+
+  Parser p;
+  Document doc;
+  const json* asset = p.object(root, "asset", "glTF");
+  if (!asset) return ctx.error("not a glTF file (no 'asset' object)");
+  const std::string version = p.string(*asset, "version", "asset");
+  if (!version.empty() && version[0] != '2') {
+    return ctx.error("unsupported glTF version '" + version + "' (only 2.x is supported)");
+  }
+
+  auto strings = [&](const char* key, std::vector<std::string>& out) {
+    if (const json* arr = p.array(root, key, "glTF")) {
+      for (const json& e : *arr) {
+        if (e.is_string()) out.push_back(e.get<std::string>());
+      }
+    }
+  };
+  strings("extensionsUsed", doc.extensionsUsed);
+  strings("extensionsRequired", doc.extensionsRequired);
+
+  const Counts count{.buffers = arraySize(root, "buffers"),
+                     .views = arraySize(root, "bufferViews"),
+                     .accessors = arraySize(root, "accessors"),
+                     .meshes = arraySize(root, "meshes"),
+                     .nodes = arraySize(root, "nodes"),
+                     .materials = arraySize(root, "materials"),
+                     .textures = arraySize(root, "textures"),
+                     .images = arraySize(root, "images"),
+                     .samplers = arraySize(root, "samplers"),
+                     .cameras = arraySize(root, "cameras")};
+
+  parseBuffers(p, root, doc, ctx, count);
+
+  parseBufferViews(p, root, doc, ctx, count);
+
+  parseAccessors(p, root, doc, ctx, count);
+
+  parseMeshes(p, root, doc, ctx, count);
+
+  parseLights(p, root, doc, ctx, count);
+  parseNodes(p, root, doc, ctx, count);
+
+  parseScenes(p, root, doc, ctx, count);
+  doc.scene = p.index(root, "scene", "glTF", doc.scenes.size(), "scenes");
+
+  parseMaterials(p, root, doc, ctx, count.textures);
+
+  parseTextures(p, root, doc, ctx, count);
+
+  parseImages(p, root, doc, ctx, count);
+
+  parseSamplers(p, root, doc, ctx, count);
+
+  parseCameras(p, root, doc, ctx, count);
 
   if (p.failed()) return ctx.error(p.error());
   return doc;

@@ -163,6 +163,94 @@ std::string environmentSpecText(const EnvironmentSpec& spec) {
   return "default";
 }
 
+namespace {
+
+// The scene file's "environment": a name (file, none, studio) or an object (file, uniform or
+// preset, and the environment settings).
+Status readEnvironment(const json& it, const std::string& baseDir, const std::string& name,
+                       SceneFile& sf) {
+  RenderSettings& s = sf.settings;
+  auto fail = [&](const Error& e) { return makeError(name + ": " + e.message); };
+  if (it.is_string()) {
+    auto spec = parseEnvironmentSpec(it.get<std::string>(), baseDir);
+    if (!spec) return fail(spec.error());
+    sf.environment = *spec;
+  } else if (it.is_object()) {
+    std::set<std::string> known = groupKeys("environment");
+    known.insert({"file", "uniform", "preset"});
+    warnUnknown(it, known, "environment", sf.warnings);
+    std::string file, preset;
+    if (auto st = read(it, "file", file, "environment"); !st) return fail(st.error());
+    if (auto st = read(it, "preset", preset, "environment"); !st) return fail(st.error());
+    std::vector<float> uni;
+    if (auto st = read(it, "uniform", uni, "environment"); !st) return fail(st.error());
+    if (int(!file.empty()) + int(!preset.empty()) + int(it.contains("uniform")) > 1) {
+      return makeError(name + ": environment: give one of 'file', 'uniform' and 'preset'");
+    }
+    if (!file.empty()) {
+      sf.environment.kind = EnvironmentSpec::Kind::File;
+      sf.environment.path = resolve(baseDir, file);
+    } else if (!preset.empty()) {
+      if (preset != "none" && preset != "studio") {
+        return makeError(name + ": environment.preset must be \"none\" or \"studio\"");
+      }
+      auto spec = parseEnvironmentSpec(preset);
+      if (!spec) return fail(spec.error());
+      sf.environment = *spec;
+    } else if (it.contains("uniform")) {
+      if (uni.size() != 3 || !std::isfinite(uni[0]) || !std::isfinite(uni[1]) ||
+          !std::isfinite(uni[2]) || uni[0] < 0 || uni[1] < 0 || uni[2] < 0) {
+        return makeError(name + ": environment.uniform must be [r, g, b] (radiances >= 0)");
+      }
+      sf.environment.kind = EnvironmentSpec::Kind::Uniform;
+      sf.environment.radiance = glm::vec3(uni[0], uni[1], uni[2]);
+    }
+    if (auto st = readGroup(it, "environment", s, "environment"); !st) return fail(st.error());
+  } else {
+    return makeError(name + ": 'environment' must be a file name, none, studio or an object");
+  }
+  return {};
+}
+
+// The scene file's "probeVolume": an explicit box and/or probe counts.
+Status readProbeVolume(const json& it, const std::string& name, SceneFile& sf) {
+  if (!it.is_object()) return makeError(name + ": 'probeVolume' must be an object");
+  warnUnknown(it, {"min", "max", "counts"}, "probeVolume", sf.warnings);
+  auto vec3 = [&](const char* key, glm::vec3& out) -> bool {
+    auto v = it.find(key);
+    if (v == it.end()) return false;
+    if (!v->is_array() || v->size() != 3) return false;
+    for (int a = 0; a < 3; ++a) {
+      if (!(*v)[a].is_number() || !std::isfinite((*v)[a].get<double>())) return false;
+      out[a] = (*v)[a].get<float>();
+    }
+    return true;
+  };
+  ProbeVolumeSpec& pv = sf.probeVolume;
+  const bool hasMin = it.contains("min"), hasMax = it.contains("max");
+  if (hasMin || hasMax) {
+    if (!vec3("min", pv.min) || !vec3("max", pv.max) || !(pv.min.x < pv.max.x) ||
+        !(pv.min.y < pv.max.y) || !(pv.min.z < pv.max.z)) {
+      return makeError(name +
+                       ": 'probeVolume' needs both 'min' and 'max' as [x, y, z], with "
+                       "min below max on every axis");
+    }
+    pv.hasBox = true;
+  }
+  if (auto c = it.find("counts"); c != it.end()) {
+    bool ok = c->is_array() && c->size() == 3;
+    for (int a = 0; ok && a < 3; ++a) {
+      ok = (*c)[a].is_number_integer() && (*c)[a].get<int64_t>() >= 1 &&
+           (*c)[a].get<int64_t>() <= 64;
+      if (ok) pv.counts[a] = (*c)[a].get<int>();
+    }
+    if (!ok) return makeError(name + ": 'probeVolume' 'counts' must be three integers in 1..64");
+  }
+  return {};
+}
+
+}  // namespace
+
 Result<SceneFile> parseSceneJson(const std::string& text, const std::string& baseDir,
                                  const std::string& name) {
   json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
@@ -182,44 +270,7 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   sf.gltfPath = resolve(baseDir, gltf);
 
   if (auto it = doc.find("environment"); it != doc.end()) {
-    if (it->is_string()) {
-      auto spec = parseEnvironmentSpec(it->get<std::string>(), baseDir);
-      if (!spec) return fail(spec.error());
-      sf.environment = *spec;
-    } else if (it->is_object()) {
-      std::set<std::string> known = groupKeys("environment");
-      known.insert({"file", "uniform", "preset"});
-      warnUnknown(*it, known, "environment", sf.warnings);
-      std::string file, preset;
-      if (auto st = read(*it, "file", file, "environment"); !st) return fail(st.error());
-      if (auto st = read(*it, "preset", preset, "environment"); !st) return fail(st.error());
-      std::vector<float> uni;
-      if (auto st = read(*it, "uniform", uni, "environment"); !st) return fail(st.error());
-      if (int(!file.empty()) + int(!preset.empty()) + int(it->contains("uniform")) > 1) {
-        return makeError(name + ": environment: give one of 'file', 'uniform' and 'preset'");
-      }
-      if (!file.empty()) {
-        sf.environment.kind = EnvironmentSpec::Kind::File;
-        sf.environment.path = resolve(baseDir, file);
-      } else if (!preset.empty()) {
-        if (preset != "none" && preset != "studio") {
-          return makeError(name + ": environment.preset must be \"none\" or \"studio\"");
-        }
-        auto spec = parseEnvironmentSpec(preset);
-        if (!spec) return fail(spec.error());
-        sf.environment = *spec;
-      } else if (it->contains("uniform")) {
-        if (uni.size() != 3 || !std::isfinite(uni[0]) || !std::isfinite(uni[1]) ||
-            !std::isfinite(uni[2]) || uni[0] < 0 || uni[1] < 0 || uni[2] < 0) {
-          return makeError(name + ": environment.uniform must be [r, g, b] (radiances >= 0)");
-        }
-        sf.environment.kind = EnvironmentSpec::Kind::Uniform;
-        sf.environment.radiance = glm::vec3(uni[0], uni[1], uni[2]);
-      }
-      if (auto st = readGroup(*it, "environment", s, "environment"); !st) return fail(st.error());
-    } else {
-      return makeError(name + ": 'environment' must be a file name, none, studio or an object");
-    }
+    PN_TRY(readEnvironment(*it, baseDir, name, sf));
   }
   if (auto it = doc.find("camera"); it != doc.end()) {
     if (it->is_string()) {
@@ -242,38 +293,7 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
     }
   }
   if (auto it = doc.find("probeVolume"); it != doc.end()) {
-    if (!it->is_object()) return makeError(name + ": 'probeVolume' must be an object");
-    warnUnknown(*it, {"min", "max", "counts"}, "probeVolume", sf.warnings);
-    auto vec3 = [&](const char* key, glm::vec3& out) -> bool {
-      auto v = it->find(key);
-      if (v == it->end()) return false;
-      if (!v->is_array() || v->size() != 3) return false;
-      for (int a = 0; a < 3; ++a) {
-        if (!(*v)[a].is_number() || !std::isfinite((*v)[a].get<double>())) return false;
-        out[a] = (*v)[a].get<float>();
-      }
-      return true;
-    };
-    ProbeVolumeSpec& pv = sf.probeVolume;
-    const bool hasMin = it->contains("min"), hasMax = it->contains("max");
-    if (hasMin || hasMax) {
-      if (!vec3("min", pv.min) || !vec3("max", pv.max) || !(pv.min.x < pv.max.x) ||
-          !(pv.min.y < pv.max.y) || !(pv.min.z < pv.max.z)) {
-        return makeError(name +
-                         ": 'probeVolume' needs both 'min' and 'max' as [x, y, z], with "
-                         "min below max on every axis");
-      }
-      pv.hasBox = true;
-    }
-    if (auto c = it->find("counts"); c != it->end()) {
-      bool ok = c->is_array() && c->size() == 3;
-      for (int a = 0; ok && a < 3; ++a) {
-        ok = (*c)[a].is_number_integer() && (*c)[a].get<int64_t>() >= 1 &&
-             (*c)[a].get<int64_t>() <= 64;
-        if (ok) pv.counts[a] = (*c)[a].get<int>();
-      }
-      if (!ok) return makeError(name + ": 'probeVolume' 'counts' must be three integers in 1..64");
-    }
+    PN_TRY(readProbeVolume(*it, name, sf));
   }
   if (auto st = readGroup(doc, "", s, "scene"); !st) return fail(st.error());
   for (const char* group : {"background", "progressive"}) {

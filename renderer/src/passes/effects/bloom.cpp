@@ -67,16 +67,9 @@ class Bloom final : public Effect {
            (levels_.empty() || std::min(w, h) / 2 >= kSmallestSide)) {
       w = std::max(1, (w + 1) / 2);
       h = std::max(1, (h + 1) / 2);
-      auto tex = gl::Texture2D::create(
-          {.width = w,
-           .height = h,
-           .format = gl::PixelFormat::RGBA16F,
-           .sampler = {.minFilter = gl::Filter::Linear, .magFilter = gl::Filter::Linear}});
-      if (!tex) return makeError("bloom level: " + tex.message());
-      ColorTarget t{std::move(*tex), gl::Framebuffer::create()};
-      t.framebuffer.attachColor(0, t.color);
-      PN_TRY(t.framebuffer.checkComplete());
-      levels_.push_back(std::move(t));
+      auto t = makeEffectTarget(w, h, "bloom level");
+      if (!t) return t.error();
+      levels_.push_back(std::move(*t));
     }
     width_ = width;
     height_ = height;

@@ -1,0 +1,198 @@
+// JSON -> Document, the materials (gltf_parse.cpp has the rest): the core properties, texture
+// references with KHR_texture_transform, and the material extensions' factors.
+#include <algorithm>
+#include <cmath>
+
+#include "scene/gltf_document.h"
+#include "scene/gltf_json.h"
+
+namespace penumbra::gltf {
+namespace {
+
+TextureInfoDesc parseTextureInfo(Parser& p, const json& info, const std::string& path,
+                                 size_t textureCount) {
+  TextureInfoDesc t;
+  t.texture = p.index(info, "index", path, textureCount, "textures", true);
+  t.texCoord = static_cast<int>(p.integer(info, "texCoord", path, 0, false, 0, 1 << 20));
+  const json* ext = p.object(info, "extensions", path);
+  const json* tt = ext ? p.object(*ext, "KHR_texture_transform", path + ".extensions") : nullptr;
+  if (tt) {
+    const std::string tp = path + ".extensions.KHR_texture_transform";
+    const glm::vec2 offset = p.vec<2>(*tt, "offset", tp, glm::vec2(0.0f));
+    const glm::vec2 scale = p.vec<2>(*tt, "scale", tp, glm::vec2(1.0f));
+    const float rotation = static_cast<float>(p.number(*tt, "rotation", tp, 0.0));
+    t.texCoord = static_cast<int>(p.integer(*tt, "texCoord", tp, t.texCoord, false, 0, 1 << 20));
+    // glm is column-major: mat3(col0, col1, col2). The rotation follows the Khronos sample
+    // viewer, three.js and the TextureTransformTest model (u' = c*u + s*v, v' = -s*u + c*v);
+    // the GLSL listing in the extension's README has the opposite sign (KhronosGroup/glTF#1563).
+    const float c = std::cos(rotation);
+    const float s = std::sin(rotation);
+    const glm::mat3 translation(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+    const glm::mat3 rot(c, -s, 0, s, c, 0, 0, 0, 1);
+    const glm::mat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    t.transform = translation * rot * scaling;
+  }
+  return t;
+}
+
+// KHR_materials_ior, KHR_materials_specular (factors) and KHR_materials_unlit. Out-of-range
+// values are clamped with a warning naming the path; specular textures are not sampled (the
+// lighting shader has no texture unit left for them on WebGL2's 16): a warning says so.
+void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path, Material& m,
+                             LoadContext& ctx) {
+  if (const json* e = p.object(ext, "KHR_materials_ior", path)) {
+    const std::string ep = path + ".KHR_materials_ior";
+    const double ior = p.number(*e, "ior", ep, 1.5);
+    // The extension allows 0 (meaning an infinite index: F0 = 1) besides [1, inf).
+    if (ior == 0.0) {
+      m.ior = 3.4e38f;
+    } else if (ior < 1.0) {
+      ctx.warn(ep + ".ior: " + std::to_string(ior) + " is below 1; using 1");
+      m.ior = 1.0f;
+    } else {
+      m.ior = static_cast<float>(ior);
+    }
+  }
+  if (const json* e = p.object(ext, "KHR_materials_specular", path)) {
+    const std::string ep = path + ".KHR_materials_specular";
+    const double f = p.number(*e, "specularFactor", ep, 1.0);
+    if (f < 0.0 || f > 1.0) ctx.warn(ep + ".specularFactor: outside [0, 1]; clamped");
+    m.specularFactor = static_cast<float>(std::clamp(f, 0.0, 1.0));
+    m.specularColorFactor =
+        glm::max(p.vec<3>(*e, "specularColorFactor", ep, glm::vec3(1.0f)), glm::vec3(0.0f));
+    for (const char* t : {"specularTexture", "specularColorTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
+  if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
+  if (const json* e = p.object(ext, "KHR_materials_clearcoat", path)) {
+    const std::string ep = path + ".KHR_materials_clearcoat";
+    const double c = p.number(*e, "clearcoatFactor", ep, 0.0);
+    const double r = p.number(*e, "clearcoatRoughnessFactor", ep, 0.0);
+    if (c < 0.0 || c > 1.0) ctx.warn(ep + ".clearcoatFactor: outside [0, 1]; clamped");
+    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
+    m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
+    m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
+  if (const json* e = p.object(ext, "KHR_materials_sheen", path)) {
+    const std::string ep = path + ".KHR_materials_sheen";
+    const glm::vec3 c = p.vec<3>(*e, "sheenColorFactor", ep, glm::vec3(0.0f));
+    const double r = p.number(*e, "sheenRoughnessFactor", ep, 0.0);
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      ctx.warn(ep + ".sheenColorFactor: outside [0, 1]; clamped");
+    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".sheenRoughnessFactor: outside [0, 1]; clamped");
+    m.sheenColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    m.sheenRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    for (const char* t : {"sheenColorTexture", "sheenRoughnessTexture"}) {
+      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    }
+  }
+}
+
+// KHR_materials_transmission and KHR_materials_volume (factors; their textures are not sampled,
+// like the other extensions' textures). Thickness is in the mesh's own units (the renderer
+// scales it by the instance's transform); a missing attenuationDistance means none.
+void parseTransmission(Parser& p, const json& ext, const std::string& path, Material& m,
+                       LoadContext& ctx) {
+  if (const json* e = p.object(ext, "KHR_materials_transmission", path)) {
+    const std::string ep = path + ".KHR_materials_transmission";
+    const double t = p.number(*e, "transmissionFactor", ep, 0.0);
+    if (t < 0.0 || t > 1.0) ctx.warn(ep + ".transmissionFactor: outside [0, 1]; clamped");
+    m.transmission = static_cast<float>(std::clamp(t, 0.0, 1.0));
+    if (p.object(*e, "transmissionTexture", ep))
+      ctx.warn(ep + ".transmissionTexture is not sampled (its factor applies)");
+  }
+  if (const json* e = p.object(ext, "KHR_materials_volume", path)) {
+    const std::string ep = path + ".KHR_materials_volume";
+    const double th = p.number(*e, "thicknessFactor", ep, 0.0);
+    if (th < 0.0) ctx.warn(ep + ".thicknessFactor: negative; using 0 (thin-walled)");
+    m.thickness = static_cast<float>(std::max(th, 0.0));
+    const double d = p.number(*e, "attenuationDistance", ep, 0.0);
+    if (e->contains("attenuationDistance") && !(d > 0.0))
+      ctx.warn(ep + ".attenuationDistance: not positive; no attenuation");
+    m.attenuationDistance = d > 0.0 && std::isfinite(d) ? static_cast<float>(d) : 0.0f;
+    const glm::vec3 c = p.vec<3>(*e, "attenuationColor", ep, glm::vec3(1.0f));
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      ctx.warn(ep + ".attenuationColor: outside [0, 1]; clamped");
+    m.attenuationColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    if (p.object(*e, "thicknessTexture", ep))
+      ctx.warn(ep + ".thicknessTexture is not sampled (its factor applies)");
+  }
+}
+
+}  // namespace
+
+// Parses the 'materials' array.
+void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx,
+                    size_t textureCount) {
+  forEach(p, root, "materials", [&](const json& o, const std::string& path, size_t) {
+    MaterialDesc md;
+    Material& m = md.material;
+    m.name = p.string(o, "name", path);
+    if (const json* pbr = p.object(o, "pbrMetallicRoughness", path)) {
+      const std::string pp = path + ".pbrMetallicRoughness";
+      m.baseColorFactor = p.vec<4>(*pbr, "baseColorFactor", pp, glm::vec4(1.0f));
+      m.metallicFactor = static_cast<float>(p.number(*pbr, "metallicFactor", pp, 1.0));
+      m.roughnessFactor = static_cast<float>(p.number(*pbr, "roughnessFactor", pp, 1.0));
+      if (const json* t = p.object(*pbr, "baseColorTexture", pp)) {
+        md.textures[kBaseColorSlot] =
+            parseTextureInfo(p, *t, pp + ".baseColorTexture", textureCount);
+      }
+      if (const json* t = p.object(*pbr, "metallicRoughnessTexture", pp)) {
+        md.textures[kMetallicRoughnessSlot] =
+            parseTextureInfo(p, *t, pp + ".metallicRoughnessTexture", textureCount);
+      }
+    }
+    if (const json* t = p.object(o, "normalTexture", path)) {
+      md.textures[kNormalSlot] = parseTextureInfo(p, *t, path + ".normalTexture", textureCount);
+      m.normalScale = static_cast<float>(p.number(*t, "scale", path + ".normalTexture", 1.0));
+    }
+    if (const json* t = p.object(o, "occlusionTexture", path)) {
+      md.textures[kOcclusionSlot] =
+          parseTextureInfo(p, *t, path + ".occlusionTexture", textureCount);
+      m.occlusionStrength =
+          static_cast<float>(p.number(*t, "strength", path + ".occlusionTexture", 1.0));
+    }
+    if (const json* t = p.object(o, "emissiveTexture", path)) {
+      md.textures[kEmissiveSlot] = parseTextureInfo(p, *t, path + ".emissiveTexture", textureCount);
+    }
+    m.emissiveFactor = p.vec<3>(o, "emissiveFactor", path, glm::vec3(0.0f));
+    const std::string alpha = p.string(o, "alphaMode", path, "OPAQUE");
+    if (alpha == "MASK") {
+      m.alphaMode = AlphaMode::Mask;
+    } else if (alpha == "BLEND") {
+      m.alphaMode = AlphaMode::Blend;
+    } else if (alpha != "OPAQUE") {
+      ctx.warn(path + ".alphaMode: unknown value '" + alpha + "', using OPAQUE");
+    }
+    m.alphaCutoff = static_cast<float>(p.number(o, "alphaCutoff", path, 0.5));
+    m.doubleSided = p.boolean(o, "doubleSided", path, false);
+    if (const json* ext = p.object(o, "extensions", path)) {
+      if (const json* es =
+              p.object(*ext, "KHR_materials_emissive_strength", path + ".extensions")) {
+        m.emissiveStrength = static_cast<float>(p.number(
+            *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
+      }
+      parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
+      parseTransmission(p, *ext, path + ".extensions", m, ctx);
+      // The coat's own normal map (the lighting shader's one spare texture unit).
+      const std::string cp = path + ".extensions.KHR_materials_clearcoat";
+      if (const json* cc = p.object(*ext, "KHR_materials_clearcoat", path + ".extensions")) {
+        if (const json* t = p.object(*cc, "clearcoatNormalTexture", cp)) {
+          md.textures[kClearcoatNormalSlot] =
+              parseTextureInfo(p, *t, cp + ".clearcoatNormalTexture", textureCount);
+          m.clearcoatNormalScale =
+              static_cast<float>(p.number(*t, "scale", cp + ".clearcoatNormalTexture", 1.0));
+        }
+      }
+    }
+    doc.materials.push_back(std::move(md));
+  });
+}
+
+}  // namespace penumbra::gltf
