@@ -70,7 +70,7 @@ async function withReport(page, name, body) {
   }
 }
 
-test('on a phone: capped pixel ratio, collapsed panel, a note that fits and goes with a tap, touch orbit', { timeout: TEST_MS }, async () => {
+test('on a phone: capped pixel ratio, collapsed panel that closes by its control or a tap outside, a note that fits and goes with a tap, touch orbit', { timeout: TEST_MS }, async () => {
   const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
                   hasTouch: true };
   // A missing environment: the scene renders and a note says what failed.
@@ -130,7 +130,19 @@ test('on a phone: capped pixel ratio, collapsed panel, a note that fits and goes
     assert.equal(await page.isVisible('#panel'), true, 'a tap on Settings opens the panel');
     const p = await box(page, '#panel');
     assert.ok(p.x >= 0 && p.x + p.width <= 390, `the panel fits the width: ${JSON.stringify(p)}`);
+    const bar = await box(page, '#toolbar');
+    assert.ok(p.y + p.height <= bar.y, `the panel stays above the toolbar: ${JSON.stringify([p, bar])}`);
     await page.screenshot({ path: join(outDir, 'phone-panel.png') });
+    // It closes by its own control, and by a tap outside it (on the view).
+    const closePanel = await box(page, '#close-panel');
+    assert.ok(closePanel.width >= 36 && closePanel.height >= 36, `a finger-sized close control: ${JSON.stringify(closePanel)}`);
+    await page.tap('#close-panel');
+    assert.equal(await page.isHidden('#panel'), true, 'the close control closes the panel');
+    assert.equal(await page.getAttribute('#toggle-panel', 'aria-expanded'), 'false');
+    await page.tap('#toggle-panel');
+    assert.equal(await page.isVisible('#panel'), true, 'Settings opens it again');
+    await page.touchscreen.tap(60, 400);
+    assert.equal(await page.isHidden('#panel'), true, 'a tap on the view closes the panel');
   });
   await browser.close();
 });

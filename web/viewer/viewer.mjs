@@ -102,9 +102,17 @@ function wirePanel(viewer) {
     toggle.setAttribute('aria-expanded', String(v));
   };
   toggle.onclick = () => setVisible(form.classList.contains('hidden'));
-  // On a narrow (phone) screen the panel would cover half the view: it starts collapsed.
-  const narrow = window.matchMedia('(max-width: 600px)').matches;
+  $('close-panel').onclick = () => setVisible(false);
+  // On a narrow (phone) screen the panel would cover half the view: it starts collapsed, and a
+  // tap anywhere outside it (the view, the progress line) closes it again.
+  const narrowQuery = window.matchMedia('(max-width: 600px)');
+  const narrow = narrowQuery.matches;
   if (query.get('panel') === '0' || (narrow && query.get('panel') !== '1')) setVisible(false);
+  document.addEventListener('pointerdown', (e) => {
+    if (!narrowQuery.matches || form.classList.contains('hidden')) return;
+    if (form.contains(e.target) || toggle.contains(e.target)) return;
+    setVisible(false);
+  });
 }
 
 // ---- files: drop and picker -------------------------------------------------------------------
