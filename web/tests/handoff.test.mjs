@@ -26,9 +26,8 @@ const SIZE = 64;
 // view 15 % too wide gives 0.21).
 const LUMINANCE_RANGE = [-0.3, 0.3];
 const MIN_SSIM = 0.4;
-// (It runs beside the other browser test files, which share the two cores: tools/test-web.)
-const FIRST_SWAP_MS = 240_000;       // load, converge, compile (45-60 s alone), samples
-const TEST_MS = 300_000;
+const FIRST_SWAP_MS = 150_000;       // load, converge, compile (45-60 s), samples
+const TEST_MS = 200_000;
 
 let server, browser, page;
 const consoleLines = [];
