@@ -21,8 +21,11 @@ const TEST_MS = 90_000;
 const NATIVE_MEAN_TOL = 0.02;
 const NATIVE_BLOCK_MEAN_TOL = 0.008;
 const NATIVE_BLOCK_MAX_TOL = 0.2;
-// While it renders, a round trip to the page (an evaluate) must come back promptly.
-const RESPONSE_MS = 3_000;
+// While it renders, a round trip to the page (an evaluate) must come back promptly. The slowest
+// is the first frames' shader compiles under SwiftShader: 2.2-2.5 s with this file alone, 2.7-3.3 s
+// as the ninth file of a clean CI run on the same 2-core VM (2026-11-27). 4 s still catches a
+// page blocked for seconds, without failing on that spread.
+const RESPONSE_MS = 4_000;
 
 let server, browser;
 const consoleLines = [];
