@@ -95,8 +95,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     passStart = now;
   }
 
-  // Exposure, tone mapping and sRGB of the running mean into the bound framebuffer and
-  // viewport (the display target, or the canvas).
   // The radiance the display shows: the mean after the post effects (passes/effect_chain.h).
   // Runs them (into their own targets): call before binding the display's framebuffer.
   Result<const gl::Texture2D*> displayedRadiance() {
@@ -104,7 +102,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return effects.run(library, mean, targets->width, targets->height, settings,
                        caps.colorBufferHalfFloat);
   }
-  // Tone maps `radiance` into the bound framebuffer's viewport.
+  // Exposure, tone mapping and sRGB of `radiance` into the bound framebuffer and viewport (the
+  // display target, or the canvas).
   void drawToneMapped(const gl::Texture2D& radiance) {
     const gl::Program& p = tonemap->begin();
     radiance.bind(0);
