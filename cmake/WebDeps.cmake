@@ -1,7 +1,7 @@
 # Web (Emscripten) build settings, included by the top-level CMakeLists.txt under EMSCRIPTEN.
 #
 # penumbra_web_deps: INTERFACE target with the header-only dependencies (glm, nlohmann/json,
-#   tinygltf, stb_image, stb_image_write). emcc must never see -I/usr/include (it would pick up
+#   tinygltf, stb_image, stb_image_write, stb_image_resize). emcc must never see -I/usr/include (it would pick up
 #   the host's libc headers), so at configure time we make a folder of symlinks to just those
 #   headers and put that folder on the include path.
 # penumbra_web_app: INTERFACE target with the link flags of a browser module (WebGL2 only, full
@@ -16,7 +16,8 @@ set(_penumbra_web_headers
   "nlohmann=/usr/include/nlohmann"
   "tiny_gltf.h=/usr/include/tiny_gltf.h"
   "stb_image.h=/usr/include/stb/stb_image.h"
-  "stb_image_write.h=/usr/include/stb/stb_image_write.h")
+  "stb_image_write.h=/usr/include/stb/stb_image_write.h"
+  "stb_image_resize.h=/usr/include/stb/stb_image_resize.h")
 foreach(_entry IN LISTS _penumbra_web_headers)
   string(REPLACE "=" ";" _pair "${_entry}")
   list(GET _pair 0 _name)

@@ -17,6 +17,9 @@
 //                 1 - transmission); 2: composes that light with what it transmits
 //   PN_ACCUMULATE  the frame's only batch adds its sample straight to the running mean
 //                 (chunks/accumulate.glsl), drawn into the other accumulation target
+// shade() reads the surface (chunks/material.glsl), builds its layers (chunks/layers.glsl) and
+// adds the terms: environment (below, with the occlusion samples and the probe volume), area
+// lights (chunks/area_term.glsl), punctual lights (chunks/punctual_term.glsl), emission.
 #include "chunks/brdf.glsl"
 #include "chunks/material.glsl"
 #include "chunks/environment.glsl"
@@ -51,24 +54,6 @@ uniform float uEnvWeight;  // weight of the environment term in this frame (0 or
 // 1 where the surface's emission lights other surfaces (probe captures, screen-space indirect
 // light); 0 on an area light's visible face, whose light the analytic area light already gives.
 uniform float uIndirectEmission;
-
-// The batch's samples: PN_AREA_COUNT area-light samples, sorted by light (bit i of
-// PN_AREA_STARTS: sample i's light is not sample i - 1's), and PN_PUNCTUAL_COUNT punctual ones.
-// Loops over them run to these constants and unroll, so arrays are read at constant indices.
-uniform vec3 uAreaPos[MAX_AREA];
-uniform vec3 uAreaDir[MAX_AREA];
-uniform vec3 uAreaRight[MAX_AREA];
-uniform vec3 uAreaUp[MAX_AREA];
-uniform vec4 uAreaShape[MAX_AREA];     // width, height, 1 = disk, shadow map index (-1 none)
-uniform vec3 uAreaRadiance[MAX_AREA];  // colour * luminance * sample weight
-
-uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 directional
-uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
-uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
-uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
-uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: unshadowed)
-uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction of travel,
-                                            // w tan(angular radius); 0 for the others
 
 #if PN_CAPTURE
 uniform int uSingleSided;  // the material is not double-sided: its back faces are walls' insides
@@ -135,53 +120,13 @@ void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
 }
 #endif
 
-#if PN_LIGHT_CACHE
-// The area lights' per-view cache: a light's unshadowed shading, the mean over the view's
-// first jittered frames, so only the samples' shadow tests remain per frame. Its mean over the
-// pixel stands in for the shading at this frame's sub-pixel position: exact wherever the
-// pixel's samples agree on visibility, a ratio estimate (Heitz et al. 2018) at silhouettes.
-uniform highp sampler2DArray uLightCache;
-uniform int uAreaLayer[MAX_AREA];  // the cache layer of each sample's light
-#endif
-
+// The lighting terms, each in its chunk; shade() below calls them in turn.
+#include "chunks/layers.glsl"
 #if PN_AREA
-AreaLight areaLightOf(int i) {
-  AreaLight L;
-  L.position = uAreaPos[i];
-  L.direction = uAreaDir[i];
-  L.right = uAreaRight[i];
-  L.up = uAreaUp[i];
-  L.size = uAreaShape[i].xy;
-  L.disk = uAreaShape[i].z > 0.5;
-  return L;
-}
-
-// Light L's unshadowed shading at the pixel per unit radiance: what each of its samples
-// multiplies by its shadow-map visibility.
-vec3 areaShading(AreaLight L, vec3 n, vec3 v, vec3 f0, float f90, float alpha,
-                 vec3 diffuseColor, float baseScale, float sheenScale, vec3 sheenColor,
-                 float sheenA, float coat, vec3 coatN, float coatAlpha) {
-  float irradiance;
-  vec3 specular;
-  evaluateAreaLight(L, vWorldPos, n, v, f0, f90, alpha, irradiance, specular);
-  // Sheen: its lobe is broad, so the light's irradiance times the lobe's value D V toward the
-  // light's centre (irradiance already holds the cosine).
-  float sheenLight = 0.0;
-  if (max(sheenColor.r, max(sheenColor.g, sheenColor.b)) > 0.0 && irradiance > 0.0) {
-    vec3 lc = normalize(L.position - vWorldPos);
-    float NoLc = dot(n, lc);
-    sheenLight = NoLc > 0.0 ? sheenBrdfCos(n, v, lc, sheenA) / NoLc : 0.0;
-  }
-  vec3 coatSpecular = vec3(0.0);
-  if (coat > 0.0) {
-    float coatIrradiance;
-    evaluateAreaLight(L, vWorldPos, coatN, v, vec3(0.04), 1.0, coatAlpha, coatIrradiance,
-                      coatSpecular);
-  }
-  return baseScale * (sheenScale * (diffuseColor * irradiance * INV_PI + specular) +
-                      sheenColor * (sheenLight * irradiance)) +
-         coat * coatSpecular;
-}
+#include "chunks/area_term.glsl"
+#endif
+#if PN_PUNCTUAL
+#include "chunks/punctual_term.glsl"
 #endif
 
 #if PN_OCCLUSION || PN_PROBE_CACHE_WRITE
@@ -190,31 +135,172 @@ float probeCacheKey() {
 }
 #endif
 
-#if PN_PUNCTUAL
-// The specular lobe of a punctual sample: only the forms this batch's kinds need.
-vec3 punctualLobe(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
-#if (PN_PUNCTUAL_KINDS & 4) == 0
-  return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
-#elif (PN_PUNCTUAL_KINDS & 11) == 0
-  return diskSpecular(n, v, f0, f90, alpha, disk);
+#if PN_OCCLUSION
+// Set by shade() before any early return (they take derivatives): the probe cache's key and
+// how far a jittered sample may move it, and the same for the occlusion rays' linear depth.
+float gCacheKey, gCacheTolerance, gViewDepth, gRayTolerance;
+
+// This frame's occlusion samples: where a ray hit, its radiance replaces the unoccluded
+// environment term (diffuse: irradiance; specular: prefiltered).
+void occlusionSamples(Layers L, inout vec3 irradiance, inout vec3 prefiltered,
+                      out bool diffuseHit, out bool specularHit) {
+  diffuseHit = false;
+  specularHit = false;
+  vec2 pixel = gl_FragCoord.xy;
+  // Diffuse: one cosine-weighted direction, the ray of a 2x2 block (traced by one of its
+  // pixels, a different one each frame), used where the traced pixel lies on this surface.
+  // The block is one of those within a pixel of this one, chosen at random once per pixel:
+  // its own block alone showed the early frames' noise, and a ray's firefly, as 2x2 squares;
+  // another one each frame mixed the blocks' sequences, and the image converged like white
+  // noise. Where the traced pixel lies on another surface, the own block's ray is taken if its
+  // pixel does not; failing both (a silhouette) the unoccluded estimate stands. E/pi is the
+  // unoccluded estimate of the cosine-weighted radiance; a blocked direction contributes the
+  // hit's radiance instead.
+  ivec2 own = ivec2(gl_FragCoord.xy) / uOcclusionBlock;
+  ivec2 offset = (ivec2(floor(hash2(pixel, 8u) * 3.0)) - 1) * (uOcclusionBlock - 1);
+  ivec2 pick = (ivec2(gl_FragCoord.xy) + offset) / uOcclusionBlock;
+  vec4 ray = texelFetch(uOcclusion, clamp(pick, ivec2(0), textureSize(uOcclusion, 0) - 1), 0);
+  vec4 ownRay = texelFetch(uOcclusion, own, 0);
+  if (abs(abs(ray.a) - gViewDepth) >= gRayTolerance) ray = ownRay;
+  if (ray.a > 0.0 && abs(ray.a - gViewDepth) < gRayTolerance) {
+    irradiance = ray.rgb * PI;
+    diffuseHit = true;
+  }
+#if PN_BROAD_LOBE
+  // A dielectric's broad specular lobe (gpu_scene.h materialFeatures) is occluded like the
+  // diffuse one: a second march would cost as much for a few per cent of the light.
+  if (diffuseHit) {
+    prefiltered = irradiance * INV_PI;
+    specularHit = true;
+  }
 #else
-  return punctualSpecular(n, v, l, f0, f90, alpha, disk);
+  // Specular: one GGX half vector, reflected, marched here.
+  vec3 hit;
+  vec3 h = tangentFrame(L.n) * sampleGgxHalfVector(pixelSample(pixel, 1.0), L.alpha);
+  vec3 sDir = reflect(-L.v, h);
+  if (dot(sDir, L.n) > 0.0 &&
+      traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {
+    prefiltered = hit;
+    specularHit = true;
+  }
 #endif
 }
 #endif
 
-// The frame's sample at this pixel into fragColor.
+// The environment's light (split sum), with this frame's occlusion samples and the probe
+// volume's answer where they have one. skyLossWeight: 1 while the diffuse term is the
+// unoccluded E(n), which a sky-shadow sample corrects later; 0 once a ray or the probes
+// replaced it.
+vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
+  vec3 irradiance = envIrradiance(L.n);
+  vec3 r = reflect(-L.v, L.n);
+  vec3 prefiltered = envRadiance(r, L.perceptualRoughness);
+  bool diffuseHit = false, specularHit = false;
+#if PN_OCCLUSION
+  occlusionSamples(L, irradiance, prefiltered, diffuseHit, specularHit);
+  if (diffuseHit) skyLossWeight = 0.0;
+#endif
+  // The probe volume answers what the screen-space rays did not: the environment's light and
+  // every bounce, with the visibility the probes saw (which also stands in for the sky-shadow
+  // correction). Looked up only when needed: a pixel whose rays both hit skips it.
+  // Frame 1 (no occlusion) keeps the sky's reflection: it is the frame shown while the view
+  // moves, and one frame of a long mean. Elsewhere only surfaces whose specular layer shows
+  // enough of the room (reflectance times smoothness) pay for the radiance lookup.
+#if PN_OCCLUSION
+  float showsRoom = max(L.specularScale.r, max(L.specularScale.g, L.specularScale.b)) *
+                    (1.0 - L.perceptualRoughness);
+  bool glossy = showsRoom > 0.01 && !specularHit;
+#else
+  bool glossy = false;
+#endif
+  vec4 room = vec4(0.0);
+  vec4 pv = vec4(0.0);
+#if PN_OCCLUSION && PN_PROBE_CACHE
+  probeCacheRead(gCacheKey, gCacheTolerance, pv, room);
+#else
+  if (PN_PROBES != 0 && (!diffuseHit || glossy)) {
+    pv = probeIrradiance(vWorldPos, L.n, L.v, r, glossy, room);
+  }
+#endif
+  if (PN_PROBES != 0) {
+#if PN_CAPTURE
+    // Captures build on what the volume holds, nothing else: each adds a bounce.
+    irradiance = pv.rgb;
+#else
+    if (pv.a > 1e-3) {
+      if (!diffuseHit) irradiance = pv.rgb;
+      // Glossy reflections of the room: where the probes see geometry toward r, their
+      // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
+      // surface gets rough (the probes' maps have no mip chain).
+      if (glossy) {
+        vec3 roomRadiance = mix(room.rgb, pv.rgb * INV_PI, L.perceptualRoughness);
+        prefiltered = mix(prefiltered, roomRadiance, room.a);
+      }
+      skyLossWeight = 0.0;
+    }
+#endif
+  }
+  // The broad sheen lobe reflects the cosine-weighted environment (with this frame's
+  // occlusion sample), scaled by its albedo: exact in a white furnace.
+  vec3 color = occlusion * L.baseScale *
+               (L.sheenScale * (L.diffuseColor * irradiance * INV_PI +
+                                prefiltered * L.specularScale) +
+                L.sheenColor * (L.sheenE * INV_PI) * irradiance);
+  if (L.coat > 0.0) {
+    vec3 coatDfg = dfg(L.coatNoV, L.coatRoughness);
+    vec3 coatPrefiltered = envRadiance(reflect(-L.v, L.coatN), L.coatRoughness);
+    color += occlusion * L.coat * coatPrefiltered * (0.04 * coatDfg.x + coatDfg.y);
+  }
+  return uEnvWeight * color;
+}
+
+#if PN_PROBE_CACHE_WRITE
+// The per-view probe cache's texels: the same lookup the shading makes (the room's radiance
+// wherever the specular layer shows enough of it: whether this frame's specular ray hits is
+// decided when reading).
+void writeProbeCache(Layers L) {
+  float showsRoom = max(L.specularScale.r, max(L.specularScale.g, L.specularScale.b)) *
+                    (1.0 - L.perceptualRoughness);
+  vec4 room;
+  vec4 pv = probeIrradiance(vWorldPos, L.n, L.v, reflect(-L.v, L.n), showsRoom > 0.01, room);
+  float key = probeCacheKey();
+  cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
+  cacheRoom = room;
+}
+#endif
+
+#if PN_LIGHT_CACHE_WRITE
+// The per-view area-light cache: one layer a light (PN_LIGHT_CACHE_WRITE of them; outputs take
+// constant indices).
+void writeLightCache(Layers L) {
+#define PN_CACHED_SHADING(i) \
+  vec4(areaShading(areaLightOf(i), L) * uLightCacheWeight, uLightCacheWeight)
+  lightCache0 = PN_CACHED_SHADING(0);
+#if PN_LIGHT_CACHE_WRITE > 1
+  lightCache1 = PN_CACHED_SHADING(1);
+#endif
+#if PN_LIGHT_CACHE_WRITE > 2
+  lightCache2 = PN_CACHED_SHADING(2);
+#endif
+#if PN_LIGHT_CACHE_WRITE > 3
+  lightCache3 = PN_CACHED_SHADING(3);
+#endif
+}
+#endif
+
+// The frame's sample at this pixel into fragColor: the surface's layers, then each term
+// (environment, area lights, punctual lights, emission), or one of the variants' other outputs.
 void shade() {
   vec3 v = normalize(uViewOrigin.xyz - vWorldPos * uViewOrigin.w);
 #if PN_OCCLUSION
   // Derivatives before any early return. A jitter moves the sample by under a pixel in x and
   // y: the key changes by at most fwidth, plus half-float rounding.
-  float cacheKey = probeCacheKey();
-  float cacheTolerance = 2.0 * fwidth(cacheKey) + 2e-3 * cacheKey;
+  gCacheKey = probeCacheKey();
+  gCacheTolerance = 2.0 * fwidth(gCacheKey) + 2e-3 * gCacheKey;
   // The same for the occlusion ray taken from a nearby 2x2 block (occlusion_trace.frag),
   // traced up to two pixels away in x and y (plus the jitter) on the prepass's half floats.
-  float viewDepth = -(uView * vec4(vWorldPos, 1.0)).z;
-  float rayTolerance = 2.0 * fwidth(viewDepth) + 2e-3 * viewDepth;
+  gViewDepth = -(uView * vec4(vWorldPos, 1.0)).z;
+  gRayTolerance = 2.0 * fwidth(gViewDepth) + 2e-3 * gViewDepth;
 #endif
 #if PN_PROBE_CACHE_WRITE
   cacheIrradiance = vec4(0.0);
@@ -234,8 +320,6 @@ void shade() {
   }
 #endif
   SurfaceInputs s = readSurface(v);
-  vec3 n = s.normal;
-  float NoV = max(dot(n, v), 1e-4);
   if (PN_UNLIT != 0 && uUnlit != 0) {
     // KHR_materials_unlit: the base colour is the radiance (once, in the first batch).
     fragColor = vec4(s.baseColor.rgb * uEnvWeight,
@@ -245,298 +329,35 @@ void shade() {
 #endif
     return;
   }
-  vec3 diffuseColor = s.baseColor.rgb * (1.0 - s.metallic);
-  vec3 f0 = mix(uDielectricF0, s.baseColor.rgb, s.metallic);
-  float f90 = mix(uDielectricF90, 1.0, s.metallic);
-  float alpha = s.perceptualRoughness * s.perceptualRoughness;
-  vec3 dfgTerms = dfg(NoV, s.perceptualRoughness);
-  vec3 specularScale = (f0 * dfgTerms.x + f90 * dfgTerms.y) * (1.0 + f0 * (1.0 / dfgTerms.z - 1.0));
-  // glTF's fresnel_mix: the diffuse base only receives what the specular layer does not
-  // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
-  // white furnace reflects exactly the environment.
-  diffuseColor *= vec3(1.0) - specularScale;
-#if PN_TRANSMISSION
-  // KHR_materials_transmission: of what the specular layer lets through, the share
-  // `transmission` passes through the surface (tinted by the base colour) instead of being
-  // diffused; it is added where the surfaces are composed (PN_TRANSMISSION 2).
-  vec3 transmitColor = diffuseColor * uTransmission;
-  diffuseColor -= transmitColor;
-#endif
-#if PN_CAPTURE
-  // Probes store irradiance, so light leaves a captured surface view-independently: the
-  // specular layer's directional albedo is reflected as if diffuse (energy kept, metals not
-  // black), and no specular lobe is evaluated.
-  diffuseColor += specularScale;
-  f0 = vec3(0.0);
-  f90 = 0.0;
-  specularScale = vec3(0.0);
-#endif
+  Layers L = surfaceLayers(s, v);
 #if PN_PROBE_CACHE_WRITE
-  {
-    // The same lookup the shading below makes (the room's radiance wherever the specular layer
-    // shows enough of it: whether this frame's specular ray hits is decided when reading).
-    float showsRoom = max(specularScale.r, max(specularScale.g, specularScale.b)) *
-                      (1.0 - s.perceptualRoughness);
-    vec4 room;
-    vec4 pv = probeIrradiance(vWorldPos, n, v, reflect(-v, n), showsRoom > 0.01, room);
-    float key = probeCacheKey();
-    cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
-    cacheRoom = room;
-    return;
-  }
+  writeProbeCache(L);
+  return;
 #endif
-
-  // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on its own normal (its
-  // normal map, else the geometric normal). The base below gets what the coat lets through,
-  // 1 - coat F(n.v), as the extension defines.
-#if PN_CAPTURE
-  float coat = 0.0;
-#else
-  float coat = PN_CLEARCOAT == 0 ? 0.0 : uClearcoat;
-#endif
-  vec3 coatN = PN_CLEARCOAT == 0 ? n : clearcoatNormal();
-  float coatNoV = max(dot(coatN, v), 1e-4);
-  float coatRoughness = clamp(uClearcoatRoughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
-  float coatAlpha = coatRoughness * coatRoughness;
-  float baseScale = PN_CLEARCOAT == 0 ? 1.0 : 1.0 - coat * F_Schlick(vec3(0.04), coatNoV).x;
-
-  // KHR_materials_sheen: a Charlie lobe over the base, which receives what the sheen does not
-  // reflect (glTF's albedo scaling, 1 - max(sheenColor) E(n.v)). Under the coat, like the base.
-#if PN_CAPTURE
-  vec3 sheenColor = vec3(0.0);
-#else
-  vec3 sheenColor = PN_SHEEN == 0 ? vec3(0.0) : uSheenColor;
-#endif
-  float sheenMax = max(sheenColor.r, max(sheenColor.g, sheenColor.b));
-  float sheenA = sheenAlpha(uSheenRoughness);
-  float sheenE = sheenMax > 0.0 ? sheenAlbedo(NoV, uSheenRoughness) : 0.0;
-  float sheenScale = 1.0 - sheenMax * sheenE;
 #if PN_LIGHT_CACHE_WRITE
-  // One layer a light (PN_LIGHT_CACHE_WRITE of them; outputs take constant indices).
-#define PN_CACHED_SHADING(i)                                                                 \
-  vec4(areaShading(areaLightOf(i), n, v, f0, f90, alpha, diffuseColor, baseScale, sheenScale, \
-                   sheenColor, sheenA, coat, coatN, coatAlpha) *                            \
-           uLightCacheWeight,                                                               \
-       uLightCacheWeight)
-  lightCache0 = PN_CACHED_SHADING(0);
-#if PN_LIGHT_CACHE_WRITE > 1
-  lightCache1 = PN_CACHED_SHADING(1);
-#endif
-#if PN_LIGHT_CACHE_WRITE > 2
-  lightCache2 = PN_CACHED_SHADING(2);
-#endif
-#if PN_LIGHT_CACHE_WRITE > 3
-  lightCache3 = PN_CACHED_SHADING(3);
-#endif
+  writeLightCache(L);
   return;
 #endif
 #if PN_TRANSMISSION == 2
   // Under the coat and the sheen like the base; the surface's own light was drawn per batch.
   // A smooth surface (at the shading's roughness floor) transmits without scattering: GGX's
   // long tail at that floor would still throw a few samples pixels away.
-  float transmitAlpha = s.perceptualRoughness > MIN_PERCEPTUAL_ROUGHNESS ? alpha : 0.0;
+  float transmitAlpha = s.perceptualRoughness > MIN_PERCEPTUAL_ROUGHNESS ? L.alpha : 0.0;
   vec3 own = texelFetch(uGlassLight, ivec2(gl_FragCoord.xy), 0).rgb;
-  fragColor = vec4(own + baseScale * sheenScale * transmitColor *
-                             transmittedRadiance(vWorldPos, n, v, transmitAlpha, uIor),
+  fragColor = vec4(own + L.baseScale * L.sheenScale * L.transmitColor *
+                             transmittedRadiance(vWorldPos, L.n, v, transmitAlpha, uIor),
                    1.0);
   return;
 #endif
 
   vec3 color = vec3(0.0);
-  // 1 while the diffuse environment term is the unoccluded E(n): a sky-shadow sample corrects
-  // it then; 0 once this frame's diffuse occlusion ray replaced it with what the ray hit.
   float skyLossWeight = 1.0;
-
-  // Environment.
-  if (uEnvWeight > 0.0) {
-    vec3 irradiance = envIrradiance(n);
-    vec3 r = reflect(-v, n);
-    vec3 prefiltered = envRadiance(r, s.perceptualRoughness);
-    bool diffuseHit = false, specularHit = false;
-#if PN_OCCLUSION
-    {
-      vec2 pixel = gl_FragCoord.xy;
-      // Diffuse: one cosine-weighted direction, the ray of a 2x2 block (traced by one of its
-      // pixels, a different one each frame), used where the traced pixel lies on this
-      // surface. The block is one of those within a pixel of this one, chosen at random once
-      // per pixel: its own block alone showed the early frames' noise, and a ray's firefly, as
-      // 2x2 squares; another one each frame mixed the blocks' sequences, and the image
-      // converged like white noise. Where the traced pixel lies on another surface, the own
-      // block's ray is taken if its pixel does not; failing both (a silhouette) the
-      // unoccluded estimate stands. E/pi is the unoccluded estimate of the cosine-weighted
-      // radiance; a blocked direction contributes the hit's radiance instead.
-      ivec2 own = ivec2(gl_FragCoord.xy) / uOcclusionBlock;
-      ivec2 offset = (ivec2(floor(hash2(pixel, 8u) * 3.0)) - 1) * (uOcclusionBlock - 1);
-      ivec2 pick = (ivec2(gl_FragCoord.xy) + offset) / uOcclusionBlock;
-      vec4 ray = texelFetch(uOcclusion, clamp(pick, ivec2(0), textureSize(uOcclusion, 0) - 1), 0);
-      vec4 ownRay = texelFetch(uOcclusion, own, 0);
-      if (abs(abs(ray.a) - viewDepth) >= rayTolerance) ray = ownRay;
-      if (ray.a > 0.0 && abs(ray.a - viewDepth) < rayTolerance) {
-        irradiance = ray.rgb * PI;
-        skyLossWeight = 0.0;
-        diffuseHit = true;
-      }
-#if PN_BROAD_LOBE
-      // A dielectric's broad specular lobe (gpu_scene.h materialFeatures) is occluded like the
-      // diffuse one: a second march would cost as much for a few per cent of the light.
-      if (diffuseHit) {
-        prefiltered = irradiance * INV_PI;
-        specularHit = true;
-      }
-#else
-      // Specular: one GGX half vector, reflected, marched here.
-      vec3 hit;
-      vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(pixel, 1.0), alpha);
-      vec3 sDir = reflect(-v, h);
-      if (dot(sDir, n) > 0.0 &&
-          traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {
-        prefiltered = hit;
-        specularHit = true;
-      }
-#endif
-    }
-#endif
-    // The probe volume answers what the screen-space rays did not: the environment's light and
-    // every bounce, with the visibility the probes saw (which also stands in for the sky-shadow
-    // correction). Looked up only when needed: a pixel whose rays both hit skips it.
-    // Frame 1 (no occlusion) keeps the sky's reflection: it is the frame shown while the view
-    // moves, and one frame of a long mean. Elsewhere only surfaces whose specular layer shows
-    // enough of the room (reflectance times smoothness) pay for the radiance lookup.
-#if PN_OCCLUSION
-    float showsRoom = max(specularScale.r, max(specularScale.g, specularScale.b)) *
-                      (1.0 - s.perceptualRoughness);
-    bool glossy = showsRoom > 0.01 && !specularHit;
-#else
-    bool glossy = false;
-#endif
-    vec4 room = vec4(0.0);
-    vec4 pv = vec4(0.0);
-#if PN_OCCLUSION && PN_PROBE_CACHE
-    probeCacheRead(cacheKey, cacheTolerance, pv, room);
-#else
-    if (PN_PROBES != 0 && (!diffuseHit || glossy)) {
-      pv = probeIrradiance(vWorldPos, n, v, r, glossy, room);
-    }
-#endif
-    if (PN_PROBES != 0) {
-#if PN_CAPTURE
-      // Captures build on what the volume holds, nothing else: each adds a bounce.
-      irradiance = pv.rgb;
-#else
-      if (pv.a > 1e-3) {
-        if (!diffuseHit) irradiance = pv.rgb;
-        // Glossy reflections of the room: where the probes see geometry toward r, their
-        // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
-        // surface gets rough (the probes' maps have no mip chain).
-        if (glossy) {
-          vec3 roomRadiance = mix(room.rgb, pv.rgb * INV_PI, s.perceptualRoughness);
-          prefiltered = mix(prefiltered, roomRadiance, room.a);
-        }
-        skyLossWeight = 0.0;
-      }
-#endif
-    }
-    // The broad sheen lobe reflects the cosine-weighted environment (with this frame's
-    // occlusion sample), scaled by its albedo: exact in a white furnace.
-    color += uEnvWeight * s.occlusion * baseScale *
-             (sheenScale * (diffuseColor * irradiance * INV_PI + prefiltered * specularScale) +
-              sheenColor * (sheenE * INV_PI) * irradiance);
-    if (coat > 0.0) {
-      vec3 coatDfg = dfg(coatNoV, coatRoughness);
-      vec3 coatPrefiltered = envRadiance(reflect(-v, coatN), coatRoughness);
-      color += uEnvWeight * s.occlusion * coat * coatPrefiltered *
-               (0.04 * coatDfg.x + coatDfg.y);
-    }
-  }
-
+  if (uEnvWeight > 0.0) color += environmentTerm(L, s.occlusion, skyLossWeight);
 #if PN_AREA
-  // Area-light samples, sorted by light: a light's unshadowed shading is the same for all of
-  // its samples, so it is computed once (or read from the per-view cache) and only the
-  // shadow-map visibility differs.
-  vec3 shaded = vec3(0.0);
-  for (int i = 0; i < PN_AREA_COUNT; ++i) {
-#if PN_LIGHT_CACHE
-    // The mean over the positions that saw a surface: at a silhouette against the sky the
-    // others added nothing, and this sample is on the surface.
-    vec4 cached = texelFetch(uLightCache, ivec3(ivec2(gl_FragCoord.xy), uAreaLayer[i]), 0);
-    shaded = cached.rgb / max(cached.a, 1e-3);
-#else
-    if ((PN_AREA_STARTS & (1 << i)) != 0) {
-      shaded = areaShading(areaLightOf(i), n, v, f0, f90, alpha, diffuseColor, baseScale,
-                           sheenScale, sheenColor, sheenA, coat, coatN, coatAlpha);
-    }
-#endif
-    float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
-    color += uAreaRadiance[i] * visibility * shaded;
-  }
+  color += areaTerm(L);
 #endif
 #if PN_PUNCTUAL
-  // Punctual lights (KHR_lights_punctual): spot and directional samples with a shadow map each
-  // (directional ones from a direction jittered over the light's angular size), point lights
-  // unshadowed.
-  for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
-    vec3 l;
-    float attenuation = 1.0;
-    int type = int(uPunctualPos[i].w);
-    // PN_PUNCTUAL_KINDS (passes/lighting_pass.h punctualKinds) compiles only the kinds of
-    // light this batch has: a software rasterizer would run every kind's code for every light.
-#if (PN_PUNCTUAL_KINDS & 3) != 0
-    if (type == 2) {
-#endif
-#if (PN_PUNCTUAL_KINDS & 28) != 0
-      l = -uPunctualDir[i].xyz;
-#endif
-#if (PN_PUNCTUAL_KINDS & 16) != 0
-      if (uPunctualCone[i].x < 0.0) {
-        // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
-        // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
-        // and colour (n.l) (V - 1) of what the shadow takes from the diffuse term.
-        float NoLs = dot(n, l);
-        if (NoLs <= 0.0 || skyLossWeight <= 0.0) continue;
-        float vis = shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
-        color += uPunctualColor[i] * ((vis - 1.0) * NoLs * INV_PI * skyLossWeight * s.occlusion *
-                                      baseScale * sheenScale) *
-                 diffuseColor;
-        continue;
-      }
-#endif
-#if (PN_PUNCTUAL_KINDS & 15) == 0
-      continue;  // sky-shadow samples only
-#endif
-#if (PN_PUNCTUAL_KINDS & 3) != 0
-    }
-    if (type != 2) {
-      vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
-      float d2 = max(dot(toLight, toLight), 1e-8);
-      l = toLight * inversesqrt(d2);
-      attenuation = 1.0 / d2;
-      float range = uPunctualDir[i].w;
-      if (range > 0.0) {
-        float x = d2 / (range * range);
-        attenuation *= saturate(1.0 - x * x);
-      }
-#if (PN_PUNCTUAL_KINDS & 2) != 0
-      if (type == 1) {
-        float cd = dot(uPunctualDir[i].xyz, -l);
-        float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
-        attenuation *= a * a;
-      }
-#endif
-    }
-#endif
-    float NoL = dot(n, l);
-    if (NoL <= 0.0 && (coat <= 0.0 || dot(coatN, l) <= 0.0)) continue;
-    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
-    vec3 e = uPunctualColor[i] * attenuation;
-    vec3 base = diffuseColor * (max(NoL, 0.0) * INV_PI) +
-                punctualLobe(n, v, l, f0, f90, alpha, uPunctualDisk[i]);
-    if (sheenMax > 0.0) base = sheenScale * base + sheenColor * sheenBrdfCos(n, v, l, sheenA);
-    color += e * baseScale * base;
-    if (coat > 0.0) {
-      color += e * coat * punctualLobe(coatN, v, l, vec3(0.04), 1.0, coatAlpha, uPunctualDisk[i]);
-    }
-  }
-
+  color += punctualTerm(L, s.occlusion, skyLossWeight);
 #endif
 #if PN_CAPTURE
   // Emissive surfaces light the probes (once, in the first batch), but for the area lights'

@@ -10,7 +10,7 @@ void main() {
   vec4 c = baseColor();
   alphaTest(c.a);
   if (uTransmission > 0.0) {
-    float passes = uTransmission * (1.0 - saturate(uMetallicFactor)) * dot(c.rgb, vec3(1.0 / 3.0)) *
+    float passes = transmissionFactor() * (1.0 - saturate(uMetallicFactor)) * dot(c.rgb, vec3(1.0 / 3.0)) *
                    (1.0 - max(uDielectricF0.r, max(uDielectricF0.g, uDielectricF0.b)));
     if (!coverageKept(1.0 - passes)) discard;
   }

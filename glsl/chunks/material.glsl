@@ -1,5 +1,6 @@
-// glTF metallic-roughness material inputs: factors, the five texture slots (each with its UV
-// set and KHR_texture_transform matrix), vertex colour, alpha modes, normal mapping.
+// glTF metallic-roughness material inputs: factors, the texture slots (each with its UV set
+// and KHR_texture_transform matrix; penumbra/scene.h TextureSlot), vertex colour, alpha modes,
+// normal mapping, and the KHR_materials_* extensions' factors times their textures.
 #include "chunks/coverage.glsl"
 // Programs specialised per material (lighting.frag's; gpu/gpu_scene.h materialDefines) know
 // which textures and layers it has: a software rasterizer runs both sides of a branch even on
@@ -39,15 +40,25 @@ uniform float uThickness;
 uniform float uIor;
 uniform float uAttenuationDistance;
 uniform vec3 uAttenuationColor;
-uniform int uTextureMask;   // bit i: slot i has a texture
-uniform int uTexCoordMask;  // bit i: slot i reads TEXCOORD_1
-uniform mat3 uUvTransform[6];
+// KHR_materials_specular's colour: ((ior - 1) / (ior + 1))^2 specularColorFactor, before the
+// clamp and the specular factor uDielectricF0 has applied (its texture multiplies in between).
+uniform vec3 uSpecularColorF0;
+#ifndef PN_TEXTURE_SLOTS
+#error "PN_TEXTURE_SLOTS (passes/limits.h) is not defined"
+#endif
+uniform int uTextureMask;  // bit i: slot i has a texture
+// Per slot, the two rows of its KHR_texture_transform; w: its UV set (S), its layer in
+// uMaterialLayers (T).
+uniform vec4 uSlotUvS[PN_TEXTURE_SLOTS];
+uniform vec4 uSlotUvT[PN_TEXTURE_SLOTS];
 uniform sampler2D uBaseColorTex;
 uniform sampler2D uMetallicRoughnessTex;
 uniform sampler2D uNormalTex;
 uniform sampler2D uOcclusionTex;
 uniform sampler2D uEmissiveTex;
-uniform sampler2D uClearcoatNormalTex;  // KHR_materials_clearcoat's own normal map
+// The extension slots' textures, a layer each: one texture unit for all of them
+// (gpu/gpu_scene.h). Colour layers hold sRGB bytes.
+uniform highp sampler2DArray uMaterialLayers;
 uniform float uClearcoatNormalScale;
 
 const int SLOT_BASE = 0;
@@ -56,6 +67,14 @@ const int SLOT_NORMAL = 2;
 const int SLOT_OCCLUSION = 3;
 const int SLOT_EMISSIVE = 4;
 const int SLOT_COAT_NORMAL = 5;
+const int SLOT_COAT = 6;
+const int SLOT_COAT_ROUGHNESS = 7;
+const int SLOT_SHEEN_COLOR = 8;
+const int SLOT_SHEEN_ROUGHNESS = 9;
+const int SLOT_SPECULAR = 10;
+const int SLOT_SPECULAR_COLOR = 11;
+const int SLOT_TRANSMISSION = 12;
+const int SLOT_THICKNESS = 13;
 
 in vec3 vWorldPos;
 in vec3 vNormal;
@@ -78,8 +97,17 @@ bool hasTexture(int slot) {
 }
 
 vec2 slotUv(int slot) {
-  vec2 uv = (uTexCoordMask & (1 << slot)) != 0 ? vUv1 : vUv0;
-  return (uUvTransform[slot] * vec3(uv, 1.0)).xy;
+  vec3 uv = vec3(uSlotUvS[slot].w > 0.5 ? vUv1 : vUv0, 1.0);
+  return vec2(dot(uSlotUvS[slot].xyz, uv), dot(uSlotUvT[slot].xyz, uv));
+}
+
+// An extension slot's texel.
+vec4 layerTexel(int slot) {
+  return texture(uMaterialLayers, vec3(slotUv(slot), uSlotUvT[slot].w));
+}
+
+vec3 srgbToLinear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
 }
 
 vec4 baseColor() {
@@ -105,8 +133,9 @@ vec3 geometricNormal() {
   return gl_FrontFacing ? n : -n;
 }
 
-// A tangent-space normal map applied to n (which geometricNormal() gave).
-vec3 mappedNormal(vec3 n, sampler2D map, int slot, float scale) {
+// A tangent-space normal map's texel `tn` (in [-1, 1]) applied to n (which geometricNormal()
+// gave).
+vec3 mappedNormal(vec3 n, vec3 tn, float scale) {
   if (dot(vTangent.xyz, vTangent.xyz) <= 1e-10) return n;
   bool flip = !gl_FrontFacing;
   // Back faces negate the whole tangent frame (as the Khronos sample viewer does).
@@ -114,7 +143,6 @@ vec3 mappedNormal(vec3 n, sampler2D map, int slot, float scale) {
   if (flip) t = -t;
   vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
   if (flip) b = -b;
-  vec3 tn = texture(map, slotUv(slot)).xyz * 2.0 - 1.0;
   tn.xy *= scale;
   return normalize(mat3(t, b, n) * tn);
 }
@@ -141,14 +169,56 @@ SurfaceInputs readSurface(vec3 viewDir) {
                             (texture(uOcclusionTex, slotUv(SLOT_OCCLUSION)).r - 1.0);
   }
   s.normal = geometricNormal();
-  if (hasTexture(SLOT_NORMAL)) s.normal = mappedNormal(s.normal, uNormalTex, SLOT_NORMAL, uNormalScale);
+  if (hasTexture(SLOT_NORMAL)) {
+    vec3 tn = texture(uNormalTex, slotUv(SLOT_NORMAL)).xyz * 2.0 - 1.0;
+    s.normal = mappedNormal(s.normal, tn, uNormalScale);
+  }
   return s;
 }
 
 // The clearcoat's normal: its own normal map if it has one, else the geometric normal.
 vec3 clearcoatNormal() {
   vec3 n = geometricNormal();
-  return hasTexture(SLOT_COAT_NORMAL)
-             ? mappedNormal(n, uClearcoatNormalTex, SLOT_COAT_NORMAL, uClearcoatNormalScale)
-             : n;
+  if (!hasTexture(SLOT_COAT_NORMAL)) return n;
+  return mappedNormal(n, layerTexel(SLOT_COAT_NORMAL).xyz * 2.0 - 1.0, uClearcoatNormalScale);
+}
+
+// KHR_materials_clearcoat: the layer's strength and perceptual roughness.
+vec2 clearcoatFactors() {
+  vec2 c = vec2(uClearcoat, uClearcoatRoughness);
+  if (hasTexture(SLOT_COAT)) c.x *= layerTexel(SLOT_COAT).r;
+  if (hasTexture(SLOT_COAT_ROUGHNESS)) c.y *= layerTexel(SLOT_COAT_ROUGHNESS).g;
+  return c;
+}
+
+// KHR_materials_sheen: colour (rgb) and perceptual roughness (a).
+vec4 sheenFactors() {
+  vec4 c = vec4(uSheenColor, uSheenRoughness);
+  if (hasTexture(SLOT_SHEEN_COLOR)) c.rgb *= srgbToLinear(layerTexel(SLOT_SHEEN_COLOR).rgb);
+  if (hasTexture(SLOT_SHEEN_ROUGHNESS)) c.a *= layerTexel(SLOT_SHEEN_ROUGHNESS).a;
+  return c;
+}
+
+// KHR_materials_ior and KHR_materials_specular: the dielectric reflectance at normal (rgb) and
+// at grazing incidence (a).
+vec4 dielectricSpecular() {
+  if (!hasTexture(SLOT_SPECULAR) && !hasTexture(SLOT_SPECULAR_COLOR)) {
+    return vec4(uDielectricF0, uDielectricF90);
+  }
+  float specular = uDielectricF90;
+  if (hasTexture(SLOT_SPECULAR)) specular *= layerTexel(SLOT_SPECULAR).a;
+  vec3 color = uSpecularColorF0;
+  if (hasTexture(SLOT_SPECULAR_COLOR)) color *= srgbToLinear(layerTexel(SLOT_SPECULAR_COLOR).rgb);
+  return vec4(min(color, vec3(1.0)) * specular, specular);
+}
+
+// KHR_materials_transmission: the transmitted share of the dielectric base.
+float transmissionFactor() {
+  return hasTexture(SLOT_TRANSMISSION) ? uTransmission * layerTexel(SLOT_TRANSMISSION).r
+                                       : uTransmission;
+}
+
+// KHR_materials_volume: the thickness (mesh units; 0 thin-walled).
+float thicknessFactor() {
+  return hasTexture(SLOT_THICKNESS) ? uThickness * layerTexel(SLOT_THICKNESS).g : uThickness;
 }

@@ -30,7 +30,8 @@ vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
   vec3 attenuation = vec3(1.0);
   vec3 start = p;  // where the ray leaves the surface (or the volume)
   vec3 dir;        // and its direction from there
-  if (uThickness > 0.0) {
+  float thickness = thicknessFactor();
+  if (thickness > 0.0) {
     // The volume is taken for a sphere of diameter `thickness` (world units: the factor times
     // the item's scale) entered here: the chord shortens toward the silhouette, and the ray
     // refracts again where it leaves through the far side, whose normal follows from the chord
@@ -39,7 +40,7 @@ vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
     vec3 inside = refract(-v, h, 1.0 / max(ior, 1.0));
     if (dot(inside, inside) < 1e-6) inside = -v;
     float scale = pow(abs(determinant(mat3(uModel))), 1.0 / 3.0);
-    float chord = uThickness * scale * max(-dot(n, inside), 0.05);
+    float chord = thickness * scale * max(-dot(n, inside), 0.05);
     if (uAttenuationDistance > 0.0) {
       attenuation = pow(max(uAttenuationColor, vec3(1e-6)), vec3(chord / uAttenuationDistance));
     }

@@ -39,7 +39,7 @@ TEST(LightCacheScheduleTest, AQuarterOfTheFramesFromFrameTwoThenRead) {
 }
 
 bool cacheable(const Material& m, bool metallicRoughnessTexture = false) {
-  bool has[kMaterialSlots] = {};
+  bool has[kTextureSlotCount] = {};
   has[1] = metallicRoughnessTexture;
   return (materialFeatures(m, has) & kFeatureLightCacheable) != 0;
 }

@@ -202,13 +202,17 @@ TEST(SceneGltfMaterial, IorSpecularClearcoatAndUnlitExtensions) {
   EXPECT_NEAR(f4.z, 0.01f, 1e-6f);
   EXPECT_FLOAT_EQ(m[5].specularFactor, 1.0f);
   EXPECT_TRUE(hasWarning(*scene, "specularFactor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "specularTexture is not sampled"));
+  // Extension textures are sampled (a layer of the material's texture array each).
+  EXPECT_GE(m[5].specularTexture.image, 0);
+  EXPECT_EQ(m[4].specularTexture.image, -1);
+  EXPECT_FALSE(hasWarning(*scene, "not sampled"));
   EXPECT_TRUE(m[6].unlit);
   EXPECT_FLOAT_EQ(m[0].clearcoat, 0.0f);
   EXPECT_FLOAT_EQ(m[7].clearcoat, 0.8f);
   EXPECT_FLOAT_EQ(m[7].clearcoatRoughness, 1.0f);
   EXPECT_TRUE(hasWarning(*scene, "clearcoatRoughnessFactor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "clearcoatTexture is not sampled"));
+  EXPECT_GE(m[7].clearcoatTexture.image, 0);
+  EXPECT_EQ(&m[7].texture(TextureSlot::Clearcoat), &m[7].clearcoatTexture);
   // The coat's own normal map is sampled (the lighting shader's spare unit).
   EXPECT_FALSE(hasWarning(*scene, "clearcoatNormalTexture is not sampled"));
   EXPECT_GE(m[7].clearcoatNormalTexture.image, 0);
@@ -245,8 +249,10 @@ TEST(SceneGltfMaterial, SheenExtension) {
   EXPECT_TRUE(
       hasWarning(*scene, "materials[2].extensions.KHR_materials_sheen.sheenColorFactor: outside"));
   EXPECT_TRUE(hasWarning(*scene, "sheenRoughnessFactor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "sheenColorTexture is not sampled"));
-  EXPECT_TRUE(hasWarning(*scene, "sheenRoughnessTexture is not sampled"));
+  EXPECT_GE(m[2].sheenColorTexture.image, 0);
+  EXPECT_GE(m[2].sheenRoughnessTexture.image, 0);
+  EXPECT_EQ(m[1].sheenColorTexture.image, -1);
+  EXPECT_FALSE(hasWarning(*scene, "not sampled"));
   EXPECT_EQ(m[3].sheenColor, glm::vec3(0.0f));
   EXPECT_FLOAT_EQ(m[3].sheenRoughness, 0.0f);
   for (const std::string& w : scene->warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
@@ -289,11 +295,13 @@ TEST(SceneGltfMaterial, TransmissionAndVolumeExtensions) {
   EXPECT_EQ(m[2].attenuationDistance, 0.0f);
   EXPECT_EQ(m[2].attenuationColor, glm::vec3(1.0f, 0.5f, 0.0f));
   EXPECT_TRUE(hasWarning(*scene, "transmissionFactor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "transmissionTexture is not sampled"));
+  EXPECT_GE(m[2].transmissionTexture.image, 0);
   EXPECT_TRUE(hasWarning(*scene, "thicknessFactor: negative"));
   EXPECT_TRUE(hasWarning(*scene, "attenuationDistance: not positive"));
   EXPECT_TRUE(hasWarning(*scene, "attenuationColor: outside [0, 1]"));
-  EXPECT_TRUE(hasWarning(*scene, "thicknessTexture is not sampled"));
+  EXPECT_GE(m[2].thicknessTexture.image, 0);
+  EXPECT_EQ(m[1].thicknessTexture.image, -1);
+  EXPECT_FALSE(hasWarning(*scene, "not sampled"));
   EXPECT_EQ(m[3].transmission, 0.0f);
   EXPECT_EQ(m[3].thickness, 0.0f);
   EXPECT_EQ(m[3].attenuationDistance, 0.0f);
@@ -395,6 +403,39 @@ TEST(SceneGltfMaterial, ImageOverTheMemoryBudgetIsAnError) {
   ASSERT_FALSE(scene.ok());
   EXPECT_THAT(scene.message(), HasSubstr("memory budget"));
   EXPECT_THAT(scene.message(), HasSubstr("image 0"));
+}
+
+TEST(SceneGltfMaterial, ExtensionTexturesShareOneSamplerWithAWarningWhenTheyDiffer) {
+  // The extension textures are layers of one texture array (gpu/gpu_scene.h): one sampler.
+  GltfBuilder b;
+  b.useExtension("KHR_materials_sheen");
+  b.useExtension("KHR_materials_clearcoat");
+  b.push("images", {{"uri", "data:image/png;base64,AAAA"}});
+  b.push("samplers", {{"magFilter", 9728}});
+  b.push("textures", {{"source", 0}, {"sampler", 0}});
+  b.push("textures", {{"source", 0}});
+  b.push("materials", {{"extensions",
+                        {{"KHR_materials_sheen",
+                          {{"sheenColorFactor", {1, 1, 1}},
+                           {"sheenColorTexture", {{"index", 0}}},
+                           {"sheenRoughnessTexture", {{"index", 0}}}}}}}});
+  b.push("materials", {{"extensions",
+                        {{"KHR_materials_clearcoat",
+                          {{"clearcoatFactor", 1},
+                           {"clearcoatTexture", {{"index", 0}}},
+                           {"clearcoatRoughnessTexture", {{"index", 1}}}}}}}});
+  auto scene = b.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  EXPECT_FALSE(hasWarning(*scene, "materials[0]: its extension textures use different samplers"));
+  EXPECT_TRUE(hasWarning(*scene, "materials[1]: its extension textures use different samplers"));
+  // Every slot's table entry names its glTF path, and the colour slots are the sRGB ones.
+  int srgb = 0;
+  for (int i = 0; i < kTextureSlotCount; ++i) {
+    const TextureSlotInfo& info = textureSlotInfo(static_cast<TextureSlot>(i));
+    EXPECT_NE(std::string(info.path).find("Texture"), std::string::npos) << info.path;
+    srgb += info.srgb ? 1 : 0;
+  }
+  EXPECT_EQ(srgb, 4) << "base colour, emissive, sheen colour, specular colour";
 }
 
 }  // namespace

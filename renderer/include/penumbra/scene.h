@@ -70,6 +70,28 @@ struct TextureRef {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// Every texture a material samples, in the shaders' slot order (glsl/chunks/material.glsl).
+// The first five are glTF's core textures; the others are the KHR_materials_* extensions'
+// (gpu/gpu_scene.h puts those in one texture array per material, so all fit WebGL2's units).
+enum class TextureSlot : int {
+  BaseColor,
+  MetallicRoughness,
+  Normal,
+  Occlusion,
+  Emissive,
+  ClearcoatNormal,     // KHR_materials_clearcoat: the coat's own normal map
+  Clearcoat,           // .r scales clearcoatFactor
+  ClearcoatRoughness,  // .g scales clearcoatRoughnessFactor
+  SheenColor,          // KHR_materials_sheen: .rgb (sRGB) scales sheenColorFactor
+  SheenRoughness,      // .a scales sheenRoughnessFactor
+  Specular,            // KHR_materials_specular: .a scales specularFactor
+  SpecularColor,       // .rgb (sRGB) scales specularColorFactor
+  Transmission,        // KHR_materials_transmission: .r scales transmissionFactor
+  Thickness,           // KHR_materials_volume: .g scales thicknessFactor
+};
+inline constexpr int kTextureSlotCount = 14;
+inline constexpr int kCoreTextureSlots = 5;  // BaseColor..Emissive: a texture unit each
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
@@ -88,14 +110,14 @@ struct Material {
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
   float ior = 1.5f;                     // KHR_materials_ior
-  float specularFactor = 1.0f;          // KHR_materials_specular (factors; textures ignored)
+  float specularFactor = 1.0f;          // KHR_materials_specular
   glm::vec3 specularColorFactor{1.0f};  // KHR_materials_specular
   bool unlit = false;                   // KHR_materials_unlit
-  float clearcoat = 0.0f;               // KHR_materials_clearcoat (factors and normal map)
+  float clearcoat = 0.0f;               // KHR_materials_clearcoat
   float clearcoatRoughness = 0.0f;
   TextureRef clearcoatNormalTexture;  // the coat's own normal map (tangent space)
   float clearcoatNormalScale = 1.0f;
-  glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (factors; textures ignored): 0 = no sheen
+  glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen: 0 = no sheen
   float sheenRoughness = 0.0f;
   // KHR_materials_transmission (factor): the share of the dielectric base's light that passes
   // through the surface instead of being diffused. Such surfaces are drawn after the opaque
@@ -107,10 +129,32 @@ struct Material {
   float thickness = 0.0f;
   float attenuationDistance = 0.0f;
   glm::vec3 attenuationColor{1.0f};
+  // The KHR_materials_* extensions' textures (TextureSlot::ClearcoatNormal and after but the
+  // normal map, which has its own field above), each scaling its factor.
+  TextureRef clearcoatTexture;
+  TextureRef clearcoatRoughnessTexture;
+  TextureRef sheenColorTexture;
+  TextureRef sheenRoughnessTexture;
+  TextureRef specularTexture;
+  TextureRef specularColorTexture;
+  TextureRef transmissionTexture;
+  TextureRef thicknessTexture;
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;
+  // The texture of a slot (one of the fields above).
+  TextureRef& texture(TextureSlot slot);
+  const TextureRef& texture(TextureSlot slot) const;
 };
+
+// What a slot is: its glTF path inside a material, whether it holds sRGB colour and whether it
+// is a tangent-space normal map.
+struct TextureSlotInfo {
+  const char* path;
+  bool srgb;
+  bool normalMap;
+};
+const TextureSlotInfo& textureSlotInfo(TextureSlot slot);
 
 // One drawable primitive, de-indexed into separate attribute arrays. Optional arrays are
 // empty when absent (normals and, for normal-mapped materials, tangents are generated).

@@ -258,6 +258,19 @@ Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layer
   return t;
 }
 
+void Texture2DArray::upload(int layer, const void* data, DataType type) {
+  PN_CHECK(handle_ && layer >= 0 && layer < layers_, "upload to a missing texture array layer");
+  const FormatInfo fi = info(desc_.format);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, handle_.id());
+  glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, desc_.width, desc_.height, 1, fi.format,
+                  uploadType(type, desc_.format), data);
+}
+
+void Texture2DArray::generateMipmaps() {
+  glBindTexture(GL_TEXTURE_2D_ARRAY, handle_.id());
+  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+}
+
 void Texture2DArray::bind(int unit) const {
   glActiveTexture(GL_TEXTURE0 + unit);
   glBindTexture(GL_TEXTURE_2D_ARRAY, handle_.id());

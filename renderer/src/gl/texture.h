@@ -93,6 +93,9 @@ class Texture2DArray {
   Texture2DArray() = default;
   static Result<Texture2DArray> create(const TextureDesc& desc, int layers);
 
+  // Uploads level 0 of one layer (width x height pixels of the format's channels).
+  void upload(int layer, const void* data, DataType type);
+  void generateMipmaps();
   void bind(int unit) const;
 
   GLuint id() const { return handle_.id(); }

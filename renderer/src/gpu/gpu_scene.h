@@ -28,31 +28,37 @@ struct GpuPrimitive {
   Bounds bounds;
 };
 
-// Material texture slots; slot i is bound to texture unit i, but for the clearcoat normal map
-// (slot 5), which takes kClearcoatNormalUnit (units 5 to 11 hold the environment, prepass and
-// shadows; passes/limits.h checks it is free).
-inline constexpr int kMaterialSlots = 6;
-inline constexpr int kClearcoatNormalUnit = 12;
-
+// A material's textures. The five core slots (TextureSlot::BaseColor..Emissive) are 2D
+// textures on units 0..4, shared between materials and possibly block-compressed. The
+// extension slots (clearcoat, sheen, specular, transmission, volume) are layers of one RGBA8
+// texture array per material on TextureUnit::MaterialLayers: all of them cost one unit, which
+// is what lets every KHR_materials_* texture be sampled within WebGL2's 16 (the environment,
+// shadows, probes and caches take the other ten). Layers share the array's size, the largest
+// of the material's extension images (smaller ones are resized on upload), and its sampler,
+// the first extension texture's (the loader warns when the others differ); colour layers keep
+// their sRGB bytes and are decoded in the shader.
 struct GpuMaterial {
   Material source;
-  // Texture per slot (base colour, metallic-roughness, normal, occlusion, emissive, clearcoat
-  // normal); null = none.
-  const gl::Texture2D* textures[kMaterialSlots] = {};
+  // Core slots' textures; null = none.
+  const gl::Texture2D* textures[kCoreTextureSlots] = {};
+  // Extension slots' layers in `layers` (-1: none), indexed by TextureSlot.
+  int layer[kTextureSlotCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  gl::Texture2DArray layers;
   // What the material uses (materialFeatures): the shading programs are specialised on it.
   uint32_t features = 0;
 };
 
-// A material's features as bits: its texture slots (bit i: slot i), the layers it has, its
-// alpha mode (kFeatureAlphaShift, 2 bits), a broad specular lobe on a dielectric (roughness
+// A material's features as bits: its texture slots (bit i: TextureSlot i), the layers it has,
+// its alpha mode (kFeatureAlphaShift, 2 bits), a broad specular lobe on a dielectric (roughness
 // 0.75 or more, metallic under 0.5, no metallic-roughness texture), and lobes rough enough for
 // the area lights' per-view cache.
-inline constexpr uint32_t kFeatureTextures = (1u << kMaterialSlots) - 1;
-inline constexpr uint32_t kFeatureClearcoat = 1u << 6, kFeatureSheen = 1u << 7,
-                          kFeatureUnlit = 1u << 8, kFeatureAlphaShift = 9,
-                          kFeatureBroadLobe = 1u << 11, kFeatureLightCacheable = 1u << 12;
+inline constexpr uint32_t kFeatureTextures = (1u << kTextureSlotCount) - 1;
+inline constexpr uint32_t kFeatureClearcoat = 1u << 14, kFeatureSheen = 1u << 15,
+                          kFeatureUnlit = 1u << 16, kFeatureAlphaShift = 17,
+                          kFeatureBroadLobe = 1u << 19, kFeatureLightCacheable = 1u << 20;
+static_assert(kTextureSlotCount == 14, "the feature bits after the slots move with them");
 inline constexpr float kLightCacheMinRoughness = 0.3f;
-uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kMaterialSlots]);
+uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSlotCount]);
 // The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:
 // a software rasterizer runs both sides of a branch even on a uniform, so a material's absent
 // clearcoat, sheen or textures would otherwise cost every pixel.
@@ -84,7 +90,8 @@ class GpuScene {
   const Bounds& bounds() const { return bounds_; }
   size_t textureCount() const { return textures_.size(); }
 
-  // Sets the material uniforms and binds its textures to units 0..4 on a program in use.
+  // Sets the material uniforms and binds its textures (units 0..4 and its layers' array) on a
+  // program in use.
   void bindMaterial(const gl::Program& program, int material) const;
   // True when a material cuts out (MASK), covers partially (BLEND) or transmits light: its
   // depth-only passes need the material's alpha (and the shadow maps its transmission).
@@ -97,6 +104,8 @@ class GpuScene {
 
  private:
   Result<const gl::Texture2D*> texture(const Scene& scene, const TextureRef& ref, bool srgb);
+  // The material's extension textures as layers of its array (gm.layers, gm.layer).
+  Status uploadLayers(const Scene& scene, GpuMaterial& gm);
   // The parts of create(): vertex and index buffers, materials and their textures (the glTF
   // default material last), and the draw lists (opaque, BLEND, transmissive).
   Status uploadMeshes(const Scene& scene);
@@ -114,6 +123,7 @@ class GpuScene {
   // Bound to the material units a material leaves empty: WebGL rejects a draw whose sampler
   // units still hold a texture attached to the framebuffer being drawn into.
   gl::Texture2D fallback_;
+  gl::Texture2DArray fallbackLayers_;
 };
 
 }  // namespace penumbra

@@ -1,16 +1,24 @@
 // The parts of the image API that are the same in the native and the web build: sRGB curves,
-// image comparison, PNG encoding (stb_image_write), Radiance writing (our own RGBE codec), and
-// the dispatch of writeImage by extension.
+// RGBA8 resampling (stb_image_resize), image comparison, PNG encoding (stb_image_write),
+// Radiance writing (our own RGBE codec), and the dispatch of writeImage by extension.
+#include <stb_image_resize.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "image/image_internal.h"
+#include "image/resize.h"
 #include "image/rgbe.h"
 #include "penumbra/image.h"
 
 namespace penumbra {
+
+std::vector<uint8_t> resizeRgba8(const std::vector<uint8_t>& pixels, int w, int h, int nw, int nh) {
+  std::vector<uint8_t> out(static_cast<size_t>(nw) * static_cast<size_t>(nh) * 4);
+  stbir_resize_uint8(pixels.data(), w, h, 0, out.data(), nw, nh, 0, 4);
+  return out;
+}
 
 float srgbToLinear(float v) {
   if (v <= 0.04045f) return v / 12.92f;

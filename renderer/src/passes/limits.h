@@ -1,13 +1,13 @@
 // Limits shared by the C++ passes and the shaders. The Renderer gives every shader these as
-// generated #defines (PN_MAX_SHADOW_MAPS, PN_MAX_PUNCTUAL_LIGHTS, PN_MAX_POINT_SHADOWS), so C++ and
-// GLSL cannot disagree; a shader that supports only one value checks it with #error. Also the
-// texture units every program uses.
+// generated #defines (PN_MAX_SHADOW_MAPS, PN_MAX_PUNCTUAL_LIGHTS, PN_MAX_POINT_SHADOWS, ...), so
+// C++ and GLSL cannot disagree; a shader that supports only one value checks it with #error. Also
+// the texture units every program uses.
 #pragma once
 
 #include <string>
 
 #include "gl/program.h"
-#include "gpu/gpu_scene.h"      // kClearcoatNormalUnit
+#include "gpu/texture_units.h"
 #include "penumbra/renderer.h"  // kMaxPunctualLights, public: RenderJob warns past it
 
 namespace penumbra::passes {
@@ -21,27 +21,25 @@ inline constexpr int kMaxCachedLights = 4;
 // Point lights with a cube shadow map (the first ones of the scene; the rest stay unshadowed).
 inline constexpr int kMaxPointShadows = 2;
 
-// Texture units: 0..4 material, then these, within WebGL2's guaranteed 16. The shadow maps
-// share one unit (a depth texture array).
-inline constexpr int kUnitEnvCube = 5, kUnitLut = 6, kUnitPrepass = 7, kUnitAccumulated = 8,
-                     kUnitShadow = 9, kUnitPointShadow = kUnitShadow + 1;
-// The probe volume's atlas (irradiance, depth moments and radiance in one texture), the
-// per-view cache of its lookups (passes/lighting_pass.h; a two-layer array), and this frame's
-// diffuse occlusion rays, traced at a quarter of the pixels (passes/occlusion_pass.h).
-inline constexpr int kUnitProbeAtlas = 13, kUnitProbeCache = 14, kUnitOcclusion = 15;
+// Texture units, from the one table (gpu/texture_units.h). The aliases below share a unit
+// with a role that never meets them in one program.
+inline constexpr int kUnitEnvCube = unitOf(TextureUnit::EnvCube),
+                     kUnitLut = unitOf(TextureUnit::Lut),
+                     kUnitPrepass = unitOf(TextureUnit::Prepass),
+                     kUnitAccumulated = unitOf(TextureUnit::Accumulated),
+                     kUnitShadow = unitOf(TextureUnit::Shadow),
+                     kUnitPointShadow = unitOf(TextureUnit::PointShadow0);
+inline constexpr int kUnitProbeAtlas = unitOf(TextureUnit::ProbeAtlas),
+                     kUnitProbeCache = unitOf(TextureUnit::ProbeCache),
+                     kUnitOcclusion = unitOf(TextureUnit::OcclusionRays);
+static_assert(kUnitPointShadow + kMaxPointShadows - 1 == unitOf(TextureUnit::PointShadow1),
+              "a unit per shadowed point light");
 // Transmissive surfaces' compose pass: the frame's copy, and their own light (in the cache's
-// and the rays' units: the compose pass reads neither). Unit 12 is the clearcoat's normal map
-// (gpu/gpu_scene.h).
+// and the rays' units: the compose pass reads neither).
 inline constexpr int kUnitBehind = kUnitOcclusion, kUnitGlassLight = kUnitProbeCache;
 // The area lights' per-view cache: in the second point shadow's unit (a batch with point-light
 // cube maps evaluates its lights instead).
-inline constexpr int kUnitLightCache = kUnitPointShadow + 1;
-static_assert(kClearcoatNormalUnit == kUnitPointShadow + kMaxPointShadows &&
-                  kClearcoatNormalUnit < kUnitProbeAtlas,
-              "the clearcoat normal map's unit is taken");
-static_assert(kUnitPointShadow + kMaxPointShadows <= kUnitProbeAtlas,
-              "the point shadows overlap the probe volume's units");
-static_assert(kUnitOcclusion < 16, "WebGL2 guarantees 16 texture units");
+inline constexpr int kUnitLightCache = unitOf(TextureUnit::PointShadow1);
 
 // Probe volume: interior texels of a probe's octahedral irradiance, depth-moment and radiance
 // maps (each tile has a one-texel border), and the face size of a probe's cube capture.
@@ -55,7 +53,8 @@ inline gl::Defines limitDefines() {
           {"PN_PROBE_IRRADIANCE_TEXELS", std::to_string(kProbeIrradianceTexels)},
           {"PN_PROBE_DEPTH_TEXELS", std::to_string(kProbeDepthTexels)},
           {"PN_PROBE_RADIANCE_TEXELS", std::to_string(kProbeRadianceTexels)},
-          {"PN_PROBE_CAPTURE_SIZE", std::to_string(kProbeCaptureSize)}};
+          {"PN_PROBE_CAPTURE_SIZE", std::to_string(kProbeCaptureSize)},
+          {"PN_TEXTURE_SLOTS", std::to_string(kTextureSlotCount)}};
 }
 
 }  // namespace penumbra::passes

@@ -132,6 +132,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
+    PN_TRY(checkTextureUnits(caps.maxTextureUnits));
     library.setCommonDefines(passes::limitDefines());
     auto lit = passes::LightingPass::create(library);
     if (!lit) return lit.error();

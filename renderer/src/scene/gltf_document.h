@@ -137,15 +137,8 @@ struct SceneDesc {
   std::vector<int> nodes;
 };
 
-enum TextureSlot {
-  kBaseColorSlot,
-  kMetallicRoughnessSlot,
-  kNormalSlot,
-  kOcclusionSlot,
-  kEmissiveSlot,
-  kClearcoatNormalSlot,  // KHR_materials_clearcoat's clearcoatNormalTexture
-};
-constexpr int kTextureSlotCount = 6;
+// A material's texture infos, indexed by penumbra::TextureSlot (penumbra/scene.h).
+constexpr size_t slotIndex(TextureSlot slot) { return static_cast<size_t>(slot); }
 
 struct TextureInfoDesc {
   int texture = -1;  // glTF texture index; -1 = none

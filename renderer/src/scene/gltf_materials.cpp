@@ -17,6 +17,50 @@ glm::vec3 Material::dielectricF0() const {
   return glm::min(glm::vec3(r * r) * specularColorFactor, glm::vec3(1.0f)) * specularFactor;
 }
 
+namespace {
+// One table: the slot's field, its glTF path and what it holds.
+struct SlotEntry {
+  TextureRef Material::*field;
+  TextureSlotInfo info;
+};
+constexpr SlotEntry kSlots[kTextureSlotCount] = {
+    {&Material::baseColorTexture, {"pbrMetallicRoughness.baseColorTexture", true, false}},
+    {&Material::metallicRoughnessTexture,
+     {"pbrMetallicRoughness.metallicRoughnessTexture", false, false}},
+    {&Material::normalTexture, {"normalTexture", false, true}},
+    {&Material::occlusionTexture, {"occlusionTexture", false, false}},
+    {&Material::emissiveTexture, {"emissiveTexture", true, false}},
+    {&Material::clearcoatNormalTexture,
+     {"extensions.KHR_materials_clearcoat.clearcoatNormalTexture", false, true}},
+    {&Material::clearcoatTexture,
+     {"extensions.KHR_materials_clearcoat.clearcoatTexture", false, false}},
+    {&Material::clearcoatRoughnessTexture,
+     {"extensions.KHR_materials_clearcoat.clearcoatRoughnessTexture", false, false}},
+    {&Material::sheenColorTexture,
+     {"extensions.KHR_materials_sheen.sheenColorTexture", true, false}},
+    {&Material::sheenRoughnessTexture,
+     {"extensions.KHR_materials_sheen.sheenRoughnessTexture", false, false}},
+    {&Material::specularTexture,
+     {"extensions.KHR_materials_specular.specularTexture", false, false}},
+    {&Material::specularColorTexture,
+     {"extensions.KHR_materials_specular.specularColorTexture", true, false}},
+    {&Material::transmissionTexture,
+     {"extensions.KHR_materials_transmission.transmissionTexture", false, false}},
+    {&Material::thicknessTexture,
+     {"extensions.KHR_materials_volume.thicknessTexture", false, false}},
+};
+}  // namespace
+
+TextureRef& Material::texture(TextureSlot slot) {
+  return this->*kSlots[static_cast<size_t>(slot)].field;
+}
+const TextureRef& Material::texture(TextureSlot slot) const {
+  return this->*kSlots[static_cast<size_t>(slot)].field;
+}
+const TextureSlotInfo& textureSlotInfo(TextureSlot slot) {
+  return kSlots[static_cast<size_t>(slot)].info;
+}
+
 }  // namespace penumbra
 
 namespace penumbra::gltf {
@@ -24,6 +68,7 @@ namespace {
 
 constexpr int kUsedOther = 1;
 constexpr int kUsedAsNormal = 2;
+constexpr int kUsedLayered = 4;  // by an extension slot: a texture array's layer, so RGBA8
 
 ImageData placeholder(const std::string& name, bool normalMap) {
   ImageData img;
@@ -109,7 +154,8 @@ ImageData fitToMaxSize(ImageData img, const std::string& what, LoadContext& ctx)
   return img;
 }
 
-Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadContext& ctx) {
+Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, bool blocks,
+                              LoadContext& ctx) {
   const ImageDesc& desc = doc.images[static_cast<size_t>(index)];
   std::string label = desc.name;
   if (label.empty() && !desc.uri.empty() && !isDataUri(desc.uri)) label = desc.uri;
@@ -153,7 +199,7 @@ Result<ImageData> decodeImage(Document& doc, int index, bool normalOnly, LoadCon
     const std::string why =
         backend::ktx2Available()
             ? backend::ktx2Transcode({data, static_cast<size_t>(size)}, uint64_t{1} << 28,
-                                     std::max(1, ctx.options.maxTextureSize), img)
+                                     std::max(1, ctx.options.maxTextureSize), blocks, img)
             : "this build has no KTX2 transcoder";
     if (!why.empty()) {
       ctx.warn(what + ": cannot decode KTX2 (" + why + "); using a 1x1 placeholder");
@@ -232,41 +278,37 @@ Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
       const int tex = md.textures[static_cast<size_t>(slot)].texture;
       if (tex < 0) continue;
       const int source = doc.textures[static_cast<size_t>(tex)].source;
-      if (source >= 0)
-        use[static_cast<size_t>(source)] |=
-            slot == kNormalSlot || slot == kClearcoatNormalSlot ? kUsedAsNormal : kUsedOther;
+      if (source < 0) continue;
+      int& u = use[static_cast<size_t>(source)];
+      u |= textureSlotInfo(static_cast<TextureSlot>(slot)).normalMap ? kUsedAsNormal : kUsedOther;
+      if (slot >= kCoreTextureSlots) u |= kUsedLayered;
     }
   }
   std::vector<int> remap(doc.images.size(), -1);
   for (size_t i = 0; i < doc.images.size(); ++i) {
     if (!use[i]) continue;
-    auto img = decodeImage(doc, static_cast<int>(i), use[i] == kUsedAsNormal, ctx);
+    auto img = decodeImage(doc, static_cast<int>(i), (use[i] & kUsedOther) == 0,
+                           (use[i] & kUsedLayered) == 0, ctx);
     if (!img.ok()) return img.error();
     remap[i] = static_cast<int>(scene.images.size());
     scene.images.push_back(std::move(img).value());
   }
 
-  static const char* kSlotNames[] = {
-      "baseColorTexture", "metallicRoughnessTexture",
-      "normalTexture",    "occlusionTexture",
-      "emissiveTexture",  "extensions.KHR_materials_clearcoat.clearcoatNormalTexture"};
   for (size_t mi = 0; mi < doc.materials.size(); ++mi) {
     const MaterialDesc& md = doc.materials[mi];
     Material m = md.material;
-    TextureRef* refs[] = {&m.baseColorTexture, &m.metallicRoughnessTexture,
-                          &m.normalTexture,    &m.occlusionTexture,
-                          &m.emissiveTexture,  &m.clearcoatNormalTexture};
     for (int slot = 0; slot < kTextureSlotCount; ++slot) {
       const TextureInfoDesc& info = md.textures[static_cast<size_t>(slot)];
       if (info.texture < 0) continue;
-      const std::string where = "materials[" + std::to_string(mi) + "]." + kSlotNames[slot];
+      const std::string where = "materials[" + std::to_string(mi) + "]." +
+                                textureSlotInfo(static_cast<TextureSlot>(slot)).path;
       const TextureDesc& tex = doc.textures[static_cast<size_t>(info.texture)];
       if (tex.source < 0) {
         ctx.warn(where + ": texture " + std::to_string(info.texture) +
                  " has no source this loader can decode; ignored");
         continue;
       }
-      TextureRef& ref = *refs[slot];
+      TextureRef& ref = m.texture(static_cast<TextureSlot>(slot));
       ref.image = remap[static_cast<size_t>(tex.source)];
       ref.sampler = tex.sampler;
       ref.texCoord = info.texCoord;
@@ -275,6 +317,20 @@ Status convertMaterials(Document& doc, Scene& scene, LoadContext& ctx) {
         ctx.warn(where + ": TEXCOORD_" + std::to_string(ref.texCoord) +
                  " is not supported (only 0 and 1); using TEXCOORD_0");
         ref.texCoord = 0;
+      }
+    }
+    // The extension textures share one texture array, so one sampler (gpu/gpu_scene.h).
+    int firstSampler = -2;
+    for (int slot = kCoreTextureSlots; slot < kTextureSlotCount; ++slot) {
+      const TextureRef& ref = m.texture(static_cast<TextureSlot>(slot));
+      if (!ref.valid()) continue;
+      if (firstSampler == -2) {
+        firstSampler = ref.sampler;
+      } else if (ref.sampler != firstSampler) {
+        ctx.warn("materials[" + std::to_string(mi) +
+                 "]: its extension textures use different samplers; the first one's applies "
+                 "to all");
+        break;
       }
     }
     scene.materials.push_back(std::move(m));

@@ -176,16 +176,17 @@ Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& pr
   }
 
   // Tangents for the normal map, else for the clearcoat's own normal map.
-  int mappedSlot = -1;
+  size_t mappedSlot = 0;
+  bool normalMapped = false;
   if (pd.material >= 0) {
     const auto& tex = doc.materials[static_cast<size_t>(pd.material)].textures;
-    if (tex[kNormalSlot].texture >= 0) {
-      mappedSlot = kNormalSlot;
-    } else if (tex[kClearcoatNormalSlot].texture >= 0) {
-      mappedSlot = kClearcoatNormalSlot;
+    for (TextureSlot slot : {TextureSlot::Normal, TextureSlot::ClearcoatNormal}) {
+      if (!normalMapped && tex[slotIndex(slot)].texture >= 0) {
+        mappedSlot = slotIndex(slot);
+        normalMapped = true;
+      }
     }
   }
-  const bool normalMapped = mappedSlot >= 0;
   if (normalMapped && prim.tangents.empty()) {
     const int uvSet = doc.materials[static_cast<size_t>(pd.material)].textures[mappedSlot].texCoord;
     const auto& uv = uvSet == 0 ? prim.uv0 : prim.uv1;

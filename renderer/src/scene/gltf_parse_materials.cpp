@@ -35,11 +35,20 @@ TextureInfoDesc parseTextureInfo(Parser& p, const json& info, const std::string&
   return t;
 }
 
-// KHR_materials_ior, KHR_materials_specular (factors) and KHR_materials_unlit. Out-of-range
-// values are clamped with a warning naming the path; specular textures are not sampled (the
-// lighting shader has no texture unit left for them on WebGL2's 16): a warning says so.
-void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path, Material& m,
-                             LoadContext& ctx) {
+// An extension's texture `name` (in object `e` at path `ep`) into its slot.
+void extensionTexture(Parser& p, const json& e, const std::string& ep, const char* name,
+                      TextureSlot slot, MaterialDesc& md, size_t textureCount) {
+  if (const json* t = p.object(e, name, ep)) {
+    md.textures[slotIndex(slot)] = parseTextureInfo(p, *t, ep + "." + name, textureCount);
+  }
+}
+
+// KHR_materials_ior, KHR_materials_specular, KHR_materials_unlit, KHR_materials_clearcoat and
+// KHR_materials_sheen: factors and textures. Out-of-range values are clamped with a warning
+// naming the path.
+void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path, MaterialDesc& md,
+                             LoadContext& ctx, size_t textureCount) {
+  Material& m = md.material;
   if (const json* e = p.object(ext, "KHR_materials_ior", path)) {
     const std::string ep = path + ".KHR_materials_ior";
     const double ior = p.number(*e, "ior", ep, 1.5);
@@ -60,9 +69,9 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
     m.specularFactor = static_cast<float>(std::clamp(f, 0.0, 1.0));
     m.specularColorFactor =
         glm::max(p.vec<3>(*e, "specularColorFactor", ep, glm::vec3(1.0f)), glm::vec3(0.0f));
-    for (const char* t : {"specularTexture", "specularColorTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
-    }
+    extensionTexture(p, *e, ep, "specularTexture", TextureSlot::Specular, md, textureCount);
+    extensionTexture(p, *e, ep, "specularColorTexture", TextureSlot::SpecularColor, md,
+                     textureCount);
   }
   if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
   if (const json* e = p.object(ext, "KHR_materials_clearcoat", path)) {
@@ -73,8 +82,14 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
     if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
     m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
     m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
-    for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
+    extensionTexture(p, *e, ep, "clearcoatTexture", TextureSlot::Clearcoat, md, textureCount);
+    extensionTexture(p, *e, ep, "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness, md,
+                     textureCount);
+    if (const json* t = p.object(*e, "clearcoatNormalTexture", ep)) {
+      md.textures[slotIndex(TextureSlot::ClearcoatNormal)] =
+          parseTextureInfo(p, *t, ep + ".clearcoatNormalTexture", textureCount);
+      m.clearcoatNormalScale =
+          static_cast<float>(p.number(*t, "scale", ep + ".clearcoatNormalTexture", 1.0));
     }
   }
   if (const json* e = p.object(ext, "KHR_materials_sheen", path)) {
@@ -87,24 +102,24 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
     if (r < 0.0 || r > 1.0) ctx.warn(ep + ".sheenRoughnessFactor: outside [0, 1]; clamped");
     m.sheenColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
     m.sheenRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
-    for (const char* t : {"sheenColorTexture", "sheenRoughnessTexture"}) {
-      if (p.object(*e, t, ep)) ctx.warn(ep + "." + t + " is not sampled (its factor applies)");
-    }
+    extensionTexture(p, *e, ep, "sheenColorTexture", TextureSlot::SheenColor, md, textureCount);
+    extensionTexture(p, *e, ep, "sheenRoughnessTexture", TextureSlot::SheenRoughness, md,
+                     textureCount);
   }
 }
 
-// KHR_materials_transmission and KHR_materials_volume (factors; their textures are not sampled,
-// like the other extensions' textures). Thickness is in the mesh's own units (the renderer
-// scales it by the instance's transform); a missing attenuationDistance means none.
-void parseTransmission(Parser& p, const json& ext, const std::string& path, Material& m,
-                       LoadContext& ctx) {
+// KHR_materials_transmission and KHR_materials_volume (factors and textures). Thickness is in
+// the mesh's own units (the renderer scales it by the instance's transform); a missing
+// attenuationDistance means none.
+void parseTransmission(Parser& p, const json& ext, const std::string& path, MaterialDesc& md,
+                       LoadContext& ctx, size_t textureCount) {
+  Material& m = md.material;
   if (const json* e = p.object(ext, "KHR_materials_transmission", path)) {
     const std::string ep = path + ".KHR_materials_transmission";
     const double t = p.number(*e, "transmissionFactor", ep, 0.0);
     if (t < 0.0 || t > 1.0) ctx.warn(ep + ".transmissionFactor: outside [0, 1]; clamped");
     m.transmission = static_cast<float>(std::clamp(t, 0.0, 1.0));
-    if (p.object(*e, "transmissionTexture", ep))
-      ctx.warn(ep + ".transmissionTexture is not sampled (its factor applies)");
+    extensionTexture(p, *e, ep, "transmissionTexture", TextureSlot::Transmission, md, textureCount);
   }
   if (const json* e = p.object(ext, "KHR_materials_volume", path)) {
     const std::string ep = path + ".KHR_materials_volume";
@@ -120,8 +135,7 @@ void parseTransmission(Parser& p, const json& ext, const std::string& path, Mate
         glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
       ctx.warn(ep + ".attenuationColor: outside [0, 1]; clamped");
     m.attenuationColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
-    if (p.object(*e, "thicknessTexture", ep))
-      ctx.warn(ep + ".thicknessTexture is not sampled (its factor applies)");
+    extensionTexture(p, *e, ep, "thicknessTexture", TextureSlot::Thickness, md, textureCount);
   }
 }
 
@@ -140,26 +154,28 @@ void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx
       m.metallicFactor = static_cast<float>(p.number(*pbr, "metallicFactor", pp, 1.0));
       m.roughnessFactor = static_cast<float>(p.number(*pbr, "roughnessFactor", pp, 1.0));
       if (const json* t = p.object(*pbr, "baseColorTexture", pp)) {
-        md.textures[kBaseColorSlot] =
+        md.textures[slotIndex(TextureSlot::BaseColor)] =
             parseTextureInfo(p, *t, pp + ".baseColorTexture", textureCount);
       }
       if (const json* t = p.object(*pbr, "metallicRoughnessTexture", pp)) {
-        md.textures[kMetallicRoughnessSlot] =
+        md.textures[slotIndex(TextureSlot::MetallicRoughness)] =
             parseTextureInfo(p, *t, pp + ".metallicRoughnessTexture", textureCount);
       }
     }
     if (const json* t = p.object(o, "normalTexture", path)) {
-      md.textures[kNormalSlot] = parseTextureInfo(p, *t, path + ".normalTexture", textureCount);
+      md.textures[slotIndex(TextureSlot::Normal)] =
+          parseTextureInfo(p, *t, path + ".normalTexture", textureCount);
       m.normalScale = static_cast<float>(p.number(*t, "scale", path + ".normalTexture", 1.0));
     }
     if (const json* t = p.object(o, "occlusionTexture", path)) {
-      md.textures[kOcclusionSlot] =
+      md.textures[slotIndex(TextureSlot::Occlusion)] =
           parseTextureInfo(p, *t, path + ".occlusionTexture", textureCount);
       m.occlusionStrength =
           static_cast<float>(p.number(*t, "strength", path + ".occlusionTexture", 1.0));
     }
     if (const json* t = p.object(o, "emissiveTexture", path)) {
-      md.textures[kEmissiveSlot] = parseTextureInfo(p, *t, path + ".emissiveTexture", textureCount);
+      md.textures[slotIndex(TextureSlot::Emissive)] =
+          parseTextureInfo(p, *t, path + ".emissiveTexture", textureCount);
     }
     m.emissiveFactor = p.vec<3>(o, "emissiveFactor", path, glm::vec3(0.0f));
     const std::string alpha = p.string(o, "alphaMode", path, "OPAQUE");
@@ -178,18 +194,8 @@ void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx
         m.emissiveStrength = static_cast<float>(p.number(
             *es, "emissiveStrength", path + ".extensions.KHR_materials_emissive_strength", 1.0));
       }
-      parseMaterialExtensions(p, *ext, path + ".extensions", m, ctx);
-      parseTransmission(p, *ext, path + ".extensions", m, ctx);
-      // The coat's own normal map (the lighting shader's one spare texture unit).
-      const std::string cp = path + ".extensions.KHR_materials_clearcoat";
-      if (const json* cc = p.object(*ext, "KHR_materials_clearcoat", path + ".extensions")) {
-        if (const json* t = p.object(*cc, "clearcoatNormalTexture", cp)) {
-          md.textures[kClearcoatNormalSlot] =
-              parseTextureInfo(p, *t, cp + ".clearcoatNormalTexture", textureCount);
-          m.clearcoatNormalScale =
-              static_cast<float>(p.number(*t, "scale", cp + ".clearcoatNormalTexture", 1.0));
-        }
-      }
+      parseMaterialExtensions(p, *ext, path + ".extensions", md, ctx, textureCount);
+      parseTransmission(p, *ext, path + ".extensions", md, ctx, textureCount);
     }
     doc.materials.push_back(std::move(md));
   });

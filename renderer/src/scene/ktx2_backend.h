@@ -18,9 +18,10 @@ bool ktx2Available();
 // Transcodes a Basis Universal KTX2 file (layer 0, face 0) into `out`: a block format the GL
 // context samples with every level the file has (out.compressedFormat, compressedLevels), or
 // else RGBA8 level 0 (pixels), row 0 at the top. Returns an empty string, or the transcoder's
-// words for what is wrong. At most `maxPixels` pixels; larger than `maxSize` a side, RGBA8.
+// words for what is wrong. At most `maxPixels` pixels; larger than `maxSize` a side, or
+// without `blocks` (an image a texture array's layer takes: gpu/gpu_scene.h), RGBA8.
 std::string ktx2Transcode(std::span<const uint8_t> src, uint64_t maxPixels, int maxSize,
-                          ImageData& out);
+                          bool blocks, ImageData& out);
 
 // Whether `bytes` start like a KTX2 file (its 12-byte identifier).
 inline bool isKtx2(std::span<const uint8_t> bytes) {

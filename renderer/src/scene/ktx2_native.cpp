@@ -7,7 +7,7 @@ bool ktx2Available() {
   return false;
 }
 
-std::string ktx2Transcode(std::span<const uint8_t>, uint64_t, int, ImageData&) {
+std::string ktx2Transcode(std::span<const uint8_t>, uint64_t, int, bool, ImageData&) {
   return "no KTX2 transcoder in this build";
 }
 

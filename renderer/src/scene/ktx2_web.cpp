@@ -80,11 +80,12 @@ bool ktx2Available() {
 }
 
 std::string ktx2Transcode(std::span<const uint8_t> src, uint64_t maxPixels, int maxSize,
-                          ImageData& out) {
+                          bool blocks, ImageData& out) {
   char err[256] = {0};
   int info[4] = {0, 0, 0, 0};
-  const int levels = pn_ktx2_open(src.data(), static_cast<double>(src.size()),
-                                  static_cast<double>(maxPixels), maxSize, info, err, sizeof err);
+  const int levels =
+      pn_ktx2_open(src.data(), static_cast<double>(src.size()), static_cast<double>(maxPixels),
+                   blocks ? maxSize : 0, info, err, sizeof err);
   if (levels <= 0) return err[0] ? err : "transcoding failed";
   out.width = info[0];
   out.height = info[1];

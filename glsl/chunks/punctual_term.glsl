@@ -1,0 +1,96 @@
+// The punctual-light term of lighting.frag (PN_PUNCTUAL): KHR_lights_punctual samples (spot
+// and directional ones shadowed, point lights by their cube maps) and the sky-shadow samples.
+// The batch's PN_PUNCTUAL_COUNT samples; the loop over them unrolls (constant indices).
+uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 directional
+uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
+uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
+uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
+uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: unshadowed)
+uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction of travel,
+                                            // w tan(angular radius); 0 for the others
+
+// The specular lobe of a punctual sample: only the forms this batch's kinds need.
+vec3 punctualLobe(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
+#if (PN_PUNCTUAL_KINDS & 4) == 0
+  return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
+#elif (PN_PUNCTUAL_KINDS & 11) == 0
+  return diskSpecular(n, v, f0, f90, alpha, disk);
+#else
+  return punctualSpecular(n, v, l, f0, f90, alpha, disk);
+#endif
+}
+
+// Punctual lights (KHR_lights_punctual): spot and directional samples with a shadow map each
+// (directional ones from a direction jittered over the light's angular size), point lights
+// unshadowed; and the sky-shadow samples, which correct the unoccluded diffuse environment term
+// while skyLossWeight says it stands.
+vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
+  vec3 color = vec3(0.0);
+  vec3 n = L.n;
+  for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
+    vec3 l;
+    float attenuation = 1.0;
+    int type = int(uPunctualPos[i].w);
+    // PN_PUNCTUAL_KINDS (passes/lighting_pass.h punctualKinds) compiles only the kinds of
+    // light this batch has: a software rasterizer would run every kind's code for every light.
+#if (PN_PUNCTUAL_KINDS & 3) != 0
+    if (type == 2) {
+#endif
+#if (PN_PUNCTUAL_KINDS & 28) != 0
+      l = -uPunctualDir[i].xyz;
+#endif
+#if (PN_PUNCTUAL_KINDS & 16) != 0
+      if (uPunctualCone[i].x < 0.0) {
+        // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
+        // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
+        // and colour (n.l) (V - 1) of what the shadow takes from the diffuse term.
+        float NoLs = dot(n, l);
+        if (NoLs <= 0.0 || skyLossWeight <= 0.0) continue;
+        float vis = shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
+        color += uPunctualColor[i] * ((vis - 1.0) * NoLs * INV_PI * skyLossWeight * occlusion *
+                                      L.baseScale * L.sheenScale) *
+                 L.diffuseColor;
+        continue;
+      }
+#endif
+#if (PN_PUNCTUAL_KINDS & 15) == 0
+      continue;  // sky-shadow samples only
+#endif
+#if (PN_PUNCTUAL_KINDS & 3) != 0
+    }
+    if (type != 2) {
+      vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
+      float d2 = max(dot(toLight, toLight), 1e-8);
+      l = toLight * inversesqrt(d2);
+      attenuation = 1.0 / d2;
+      float range = uPunctualDir[i].w;
+      if (range > 0.0) {
+        float x = d2 / (range * range);
+        attenuation *= saturate(1.0 - x * x);
+      }
+#if (PN_PUNCTUAL_KINDS & 2) != 0
+      if (type == 1) {
+        float cd = dot(uPunctualDir[i].xyz, -l);
+        float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
+        attenuation *= a * a;
+      }
+#endif
+    }
+#endif
+    float NoL = dot(n, l);
+    if (NoL <= 0.0 && (L.coat <= 0.0 || dot(L.coatN, l) <= 0.0)) continue;
+    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
+    vec3 e = uPunctualColor[i] * attenuation;
+    vec3 base = L.diffuseColor * (max(NoL, 0.0) * INV_PI) +
+                punctualLobe(n, L.v, l, L.f0, L.f90, L.alpha, uPunctualDisk[i]);
+    if (L.sheenMax > 0.0) {
+      base = L.sheenScale * base + L.sheenColor * sheenBrdfCos(n, L.v, l, L.sheenA);
+    }
+    color += e * L.baseScale * base;
+    if (L.coat > 0.0) {
+      color += e * L.coat *
+               punctualLobe(L.coatN, L.v, l, vec3(0.04), 1.0, L.coatAlpha, uPunctualDisk[i]);
+    }
+  }
+  return color;
+}
