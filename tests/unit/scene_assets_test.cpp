@@ -59,6 +59,24 @@ TEST(SceneAssets, OtherBundledScenesLoadWithoutErrors) {
   if (loaded == 0) GTEST_SKIP() << "no bundled scenes yet";
 }
 
+TEST(SceneAssets, LayersSceneSamplesEveryExtensionTextureWithoutAWarning) {
+  // assets/layers (tools/assets/gen_layers.py): every KHR_materials_* texture slot is used by
+  // some material, decoded (no placeholder) and loaded without a single warning.
+  auto scene = loadGltf(sourceDir() + "/assets/layers/layers.gltf");
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  for (const std::string& w : scene->warnings) ADD_FAILURE() << w;
+  for (int slot = kCoreTextureSlots; slot < kTextureSlotCount; ++slot) {
+    int users = 0;
+    for (const Material& m : scene->materials) {
+      const TextureRef& ref = m.texture(static_cast<TextureSlot>(slot));
+      if (!ref.valid()) continue;
+      ++users;
+      EXPECT_FALSE(scene->images.at(static_cast<size_t>(ref.image)).placeholder);
+    }
+    EXPECT_GT(users, 0) << textureSlotInfo(static_cast<TextureSlot>(slot)).path;
+  }
+}
+
 TEST(SceneAssets, GlassSceneCarriesEveryAlphaMode) {
   auto scene = loadGltf(sourceDir() + "/assets/glass/glass.gltf");
   ASSERT_TRUE(scene.ok()) << scene.message();

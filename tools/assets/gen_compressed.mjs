@@ -11,6 +11,8 @@
 //   glass_ktx2.gltf      the glass scene (assets/glass) with its lattice texture as a KTX2 file
 //                        (lattice.ktx2: UASTC, Binomial's Basis Universal encoder as packaged by
 //                        ktx2-encoder) under KHR_texture_basisu, with no PNG fallback
+//   layers_ktx2.gltf     the layers scene (assets/layers) with all five of its textures, every
+//                        one an extension texture, as KTX2 files (UASTC) likewise
 // Every extension is in extensionsRequired: nothing renders without decoding it.
 // tools/build-web runs it into web/dist/assets/compressed/ (the environment resolves to
 // ../env/studio_sky.hdr there). Usage: node tools/assets/gen_compressed.mjs --out-dir DIR
@@ -217,12 +219,12 @@ for (const [name, make] of [['product_draco', dracoFile], ['product_meshopt', me
   console.log(`gen_compressed: ${name}.glb ${bytes.length} B`);
 }
 
-// The glass scene's lattice texture (8-bit RGBA, as tools/assets/gen_glass.py writes it: one
-// IDAT, filter 0 on every row) as RGBA8 pixels.
-function latticePixels() {
-  const png = readFileSync(join(root, 'assets/glass/lattice.png'));
+// A PNG as tools/assets/gen_glass.py's png_rgba writes it (8-bit RGBA, one IDAT, filter 0 on
+// every row) as RGBA8 pixels.
+function pngPixels(path) {
+  const png = readFileSync(path);
   const width = png.readUInt32BE(16), height = png.readUInt32BE(20);
-  if (png[24] !== 8 || png[25] !== 6) throw new Error('lattice.png: not 8-bit RGBA');
+  if (png[24] !== 8 || png[25] !== 6) throw new Error(`${path}: not 8-bit RGBA`);
   let at = 8;
   const idat = [];
   while (at < png.length) {
@@ -233,7 +235,7 @@ function latticePixels() {
   const raw = inflateSync(Buffer.concat(idat));
   const data = new Uint8Array(width * height * 4);
   for (let y = 0; y < height; ++y) {
-    if (raw[y * (width * 4 + 1)] !== 0) throw new Error('lattice.png: a filtered row');
+    if (raw[y * (width * 4 + 1)] !== 0) throw new Error(`${path}: a filtered row`);
     data.set(raw.subarray(y * (width * 4 + 1) + 1, (y + 1) * (width * 4 + 1)), y * width * 4);
   }
   return { width, height, data };
@@ -242,7 +244,7 @@ function latticePixels() {
 async function glassKtx2() {
   const glassDir = join(root, 'assets/glass');
   const json = JSON.parse(readFileSync(join(glassDir, 'glass.gltf'), 'utf8'));
-  const pixels = latticePixels();
+  const pixels = pngPixels(join(glassDir, 'lattice.png'));
   // UASTC (near-lossless) with the sRGB transfer function, no mip levels (nearest filtering).
   const ktx2 = await encodeToKTX2(new Uint8Array(0), {
     isUASTC: true, isSetKTX2SRGBTransferFunc: true, generateMipmap: false, isKTX2File: true,
@@ -263,3 +265,33 @@ async function glassKtx2() {
   console.log(`gen_compressed: lattice.ktx2 ${ktx2.length} B`);
 }
 await glassKtx2();
+
+// The layers scene with each PNG as a UASTC KTX2 file (their extension slots make the browser
+// transcode them to RGBA8: gpu/gpu_scene.h).
+async function layersKtx2() {
+  const dir = join(root, 'assets/layers');
+  const json = JSON.parse(readFileSync(join(dir, 'layers.gltf'), 'utf8'));
+  let total = 0;
+  json.images = await Promise.all(json.images.map(async ({ uri }) => {
+    const pixels = pngPixels(join(dir, uri));
+    const ktx2 = await encodeToKTX2(new Uint8Array(0), {
+      isUASTC: true, generateMipmap: false, isKTX2File: true, imageDecoder: async () => pixels,
+    });
+    const name = `layers_${uri.replace(/\.png$/, '.ktx2')}`;
+    writeFileSync(join(outDir, name), ktx2);
+    total += ktx2.length;
+    return { uri: name, mimeType: 'image/ktx2' };
+  }));
+  json.buffers = json.buffers.map((b) => ({ ...b, uri: `../layers/${b.uri}` }));
+  json.textures = json.textures.map(({ source, ...t }) => ({
+    ...t, extensions: { KHR_texture_basisu: { source } } }));
+  require(json, 'KHR_texture_basisu');
+  writeFileSync(join(outDir, 'layers_ktx2.gltf'), `${JSON.stringify(json, null, 1)}\n`);
+  const scene = JSON.parse(readFileSync(join(dir, 'layers.json'), 'utf8'));
+  writeFileSync(join(outDir, 'layers_ktx2.json'),
+                `${JSON.stringify({ ...scene, comment: `${scene.comment} (layers_ktx2.gltf: its ` +
+                                    'textures as KTX2, by tools/assets/gen_compressed.mjs)',
+                                    gltf: 'layers_ktx2.gltf' }, null, 2)}\n`);
+  console.log(`gen_compressed: layers' five textures as KTX2, ${total} B`);
+}
+await layersKtx2();

@@ -1,0 +1,107 @@
+// Every KHR_materials_* texture in the browser (issue #37's texture budget): the layers scene
+// (assets/layers, tools/assets/gen_layers.py: clearcoat, its roughness and normal map, sheen
+// colour and roughness, specular and specular colour, transmission, thickness, all as layers of
+// one texture array per material) loads without a warning and renders like native
+// penumbra-render; the same scene with its textures as KTX2 (tools/assets/gen_compressed.mjs),
+// which the browser transcodes to RGBA8 because every one of them is an extension texture,
+// renders like the PNGs.
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { blocks, closeServer, diff, dist, fmt, launch, nativeRender, outDir, pixels,
+         recordConsole, serve, withTimeout } from './harness.mjs';
+
+const WIDTH = 180, HEIGHT = 120;  // the scene camera's 3:2
+const FRAMES = 9;
+const TEST_MS = 120_000;
+// Canvas vs native (SwiftShader vs llvmpipe, display values in [0, 1]), as for the glass scene
+// (transparency.test.mjs): per-pixel noise lands differently, so pixels get a mean bound and
+// 8x8 block means a tight one. An extension texture not sampled (its factor alone: the coat's
+// bands, the sheen's checker, the specular stripes, the pane's bars gone) moves blocks by more
+// than 0.05.
+const NATIVE_MEAN_TOL = 0.02;
+const NATIVE_BLOCK_MEAN_TOL = 0.008;
+const NATIVE_BLOCK_MAX_TOL = 0.2;
+// KTX2 (UASTC, near-lossless) against the PNGs, one renderer: the glass scene's lattice
+// measured pixels mean 0.0000 (compressed.test.mjs); these smoother textures keep a margin.
+const KTX2_MEAN_TOL = 0.003;
+const KTX2_BLOCK_MAX_TOL = 0.03;
+
+let server, browser;
+const consoleLines = [];
+let reference;
+
+before(async () => {
+  mkdirSync(outDir, { recursive: true });
+  reference = nativeRender('assets/layers/layers.json', WIDTH, HEIGHT, FRAMES,
+                           'native-layers.png', null, consoleLines);
+  const extra = reference ? { '/__layers.png': reference.path } : {};
+  server = await serve(dist, extra);
+  browser = await launch({ viewport: { width: WIDTH, height: HEIGHT } });
+}, { timeout: 90_000 });
+
+after(async () => {
+  if (browser) await browser.close();
+  closeServer(server);
+});
+
+// The converged canvas of a scene file, and the warnings the page logged while loading it.
+async function render(scene, shot) {
+  const pg = await withTimeout(browser.context.newPage(), 10_000, 'new page');
+  const lines = [];
+  recordConsole(pg, lines);
+  try {
+    const url = `http://127.0.0.1:${server.address().port}/index.html` +
+                `?scene=${scene}&frames=${FRAMES}&pixelRatio=1&panel=0&adaptive=0`;
+    await pg.goto(url, { timeout: 20_000 });
+    await pg.waitForFunction(() => window.penumbraPage && (window.penumbraPage.ready ||
+                                                           window.penumbraPage.fatal),
+                             null, { timeout: 30_000 });
+    assert.equal(await pg.evaluate(() => window.penumbraPage.fatal), undefined);
+    await pg.waitForFunction(() => window.penumbraPage.convergedCount > 0 ||
+                                   window.penumbraPage.errors.length > 0,
+                             null, { timeout: 90_000 });
+    assert.deepEqual(await pg.evaluate(() => window.penumbraPage.errors), []);
+    const canvas = await pixels(pg);
+    await pg.screenshot({ path: join(outDir, shot) });
+    // The loader's warnings (penumbra.mjs logs each as "[penumbra] file: ...").
+    const warnings = lines.filter((l) => /^\[(warning|error)\] \[penumbra\]/.test(l));
+    return { canvas, pg, warnings };
+  } catch (e) {
+    await pg.screenshot({ path: join(outDir, `failed-${shot}`) }).catch(() => {});
+    await pg.close().catch(() => {});
+    e.message += `\n--- console ---\n${lines.slice(-40).join('\n')}`;
+    throw e;
+  } finally {
+    consoleLines.push(...lines);
+  }
+}
+
+test('every extension texture is sampled in the browser, like native, and from KTX2', { timeout: TEST_MS }, async () => {
+  const png = await render('assets/layers/layers.json', 'layers.png');
+  try {
+    assert.deepEqual(png.warnings, [], 'the layers scene loads without a warning');
+    if (reference) {
+      const ref = await pixels(png.pg, '/__layers.png');
+      const d = diff(png.canvas, ref);
+      const b = diff(blocks(png.canvas, 8), blocks(ref, 8));
+      console.log(`# canvas vs ${reference.source}: pixels ${fmt(d)}; 8x8 blocks ${fmt(b)}`);
+      assert.ok(d.mean <= NATIVE_MEAN_TOL, `pixels: mean > ${NATIVE_MEAN_TOL} (${fmt(d)})`);
+      assert.ok(b.mean <= NATIVE_BLOCK_MEAN_TOL, `blocks: mean > ${NATIVE_BLOCK_MEAN_TOL} (${fmt(b)})`);
+      assert.ok(b.max <= NATIVE_BLOCK_MAX_TOL, `blocks: max > ${NATIVE_BLOCK_MAX_TOL} (${fmt(b)})`);
+    } else {
+      console.log('# no native penumbra-render built: canvas not compared');
+    }
+  } finally {
+    await png.pg.close().catch(() => {});
+  }
+  const ktx2 = await render('assets/compressed/layers_ktx2.json', 'layers-ktx2.png');
+  await ktx2.pg.close().catch(() => {});
+  assert.deepEqual(ktx2.warnings, [], 'the KTX2 copy loads without a warning');
+  const d = diff(ktx2.canvas, png.canvas);
+  const b = diff(blocks(ktx2.canvas, 8), blocks(png.canvas, 8));
+  console.log(`# KTX2 vs PNG textures: pixels ${fmt(d)}; 8x8 blocks ${fmt(b)}`);
+  assert.ok(d.mean <= KTX2_MEAN_TOL, `pixels: mean > ${KTX2_MEAN_TOL} (${fmt(d)})`);
+  assert.ok(b.max <= KTX2_BLOCK_MAX_TOL, `blocks: max > ${KTX2_BLOCK_MAX_TOL} (${fmt(b)})`);
+});
