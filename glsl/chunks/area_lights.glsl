@@ -11,7 +11,7 @@ struct AreaLight {
   vec3 right;     // unit, along width
   vec3 up;        // unit, along height
   vec2 size;      // rect: width, height; disk: diameter, diameter
-  bool disk;
+  int shape;      // PN_LIGHT_RECT or PN_LIGHT_DISK (scene/light_kinds.h shaderCode)
 };
 
 // Contribution of the edge a -> b (unit vectors from the shading point) to the contour sum:
@@ -40,7 +40,7 @@ float areaLightIrradiance(AreaLight L, vec3 p, vec3 n) {
   vec2 cs;     // (cos t, sin t) of the current vertex
   vec2 step;   // (cos, sin) of the step angle
   int count;
-  if (L.disk) {
+  if (L.shape == PN_LIGHT_DISK) {
     float r = 0.5 * L.size.x * 1.0130;  // N = 16
     A = r * L.right;
     B = r * L.up;
@@ -99,7 +99,7 @@ vec3 representativePoint(AreaLight L, vec3 p, vec3 r) {
   }
   vec3 d = q - L.position;
   vec2 local = vec2(dot(d, L.right), dot(d, L.up));
-  if (L.disk) {
+  if (L.shape == PN_LIGHT_DISK) {
     float rad = 0.5 * L.size.x;
     float len = length(local);
     if (len > rad) local *= rad / len;
@@ -122,7 +122,7 @@ void evaluateAreaLight(AreaLight L, vec3 p, vec3 n, vec3 v, vec3 f0, float f90, 
   float dist = max(length(toQ), 1e-4);
   vec3 l = toQ / dist;
   if (dot(n, l) <= 0.0) return;
-  float area = L.disk ? 0.785398 * L.size.x * L.size.x : L.size.x * L.size.y;
+  float area = L.shape == PN_LIGHT_DISK ? 0.785398 * L.size.x * L.size.x : L.size.x * L.size.y;
   float equivalentRadius = sqrt(area / PI);
   float widened = min(1.0, alpha + equivalentRadius / (2.0 * dist));
   float norm = (alpha / widened) * (alpha / widened);

@@ -9,7 +9,7 @@ uniform vec3 uAreaPos[MAX_AREA];
 uniform vec3 uAreaDir[MAX_AREA];
 uniform vec3 uAreaRight[MAX_AREA];
 uniform vec3 uAreaUp[MAX_AREA];
-uniform vec4 uAreaShape[MAX_AREA];     // width, height, 1 = disk, shadow map index (-1 none)
+uniform vec4 uAreaShape[MAX_AREA];     // width, height, shape (PN_LIGHT_*), shadow map (-1 none)
 uniform vec3 uAreaRadiance[MAX_AREA];  // colour * luminance * sample weight
 
 #if PN_LIGHT_CACHE
@@ -28,7 +28,7 @@ AreaLight areaLightOf(int i) {
   A.right = uAreaRight[i];
   A.up = uAreaUp[i];
   A.size = uAreaShape[i].xy;
-  A.disk = uAreaShape[i].z > 0.5;
+  A.shape = int(uAreaShape[i].z + 0.5);
   return A;
 }
 

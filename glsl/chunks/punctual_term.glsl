@@ -1,7 +1,7 @@
 // The punctual-light term of lighting.frag (PN_PUNCTUAL): KHR_lights_punctual samples (spot
 // and directional ones shadowed, point lights by their cube maps) and the sky-shadow samples.
 // The batch's PN_PUNCTUAL_COUNT samples; the loop over them unrolls (constant indices).
-uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: 0 point, 1 spot, 2 directional
+uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: PN_LIGHT_POINT, _SPOT or _DIRECTIONAL
 uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
 uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
 uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
@@ -11,9 +11,9 @@ uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction
 
 // The specular lobe of a punctual sample: only the forms this batch's kinds need.
 vec3 punctualLobe(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, vec4 disk) {
-#if (PN_PUNCTUAL_KINDS & 4) == 0
+#if (PN_PUNCTUAL_KINDS & PN_KIND_SUN) == 0
   return specularBrdf(n, v, l, f0, f90, alpha, 1.0) * max(dot(n, l), 0.0);
-#elif (PN_PUNCTUAL_KINDS & 11) == 0
+#elif (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT | PN_KIND_DIRECTIONAL)) == 0
   return diskSpecular(n, v, f0, f90, alpha, disk);
 #else
   return punctualSpecular(n, v, l, f0, f90, alpha, disk);
@@ -31,15 +31,15 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
     vec3 l;
     float attenuation = 1.0;
     int type = int(uPunctualPos[i].w);
-    // PN_PUNCTUAL_KINDS (passes/lighting_pass.h punctualKinds) compiles only the kinds of
+    // PN_PUNCTUAL_KINDS (passes/limits.h PunctualKindBits) compiles only the kinds of
     // light this batch has: a software rasterizer would run every kind's code for every light.
-#if (PN_PUNCTUAL_KINDS & 3) != 0
-    if (type == 2) {
+#if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
+    if (type == PN_LIGHT_DIRECTIONAL) {
 #endif
-#if (PN_PUNCTUAL_KINDS & 28) != 0
+#if (PN_PUNCTUAL_KINDS & (PN_KIND_SUN | PN_KIND_DIRECTIONAL | PN_KIND_SKY_SHADOW)) != 0
       l = -uPunctualDir[i].xyz;
 #endif
-#if (PN_PUNCTUAL_KINDS & 16) != 0
+#if (PN_PUNCTUAL_KINDS & PN_KIND_SKY_SHADOW) != 0
       if (uPunctualCone[i].x < 0.0) {
         // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
         // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
@@ -53,12 +53,12 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
         continue;
       }
 #endif
-#if (PN_PUNCTUAL_KINDS & 15) == 0
+#if (PN_PUNCTUAL_KINDS & ~PN_KIND_SKY_SHADOW) == 0
       continue;  // sky-shadow samples only
 #endif
-#if (PN_PUNCTUAL_KINDS & 3) != 0
+#if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
     }
-    if (type != 2) {
+    if (type != PN_LIGHT_DIRECTIONAL) {
       vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
       float d2 = max(dot(toLight, toLight), 1e-8);
       l = toLight * inversesqrt(d2);
@@ -68,8 +68,8 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
         float x = d2 / (range * range);
         attenuation *= saturate(1.0 - x * x);
       }
-#if (PN_PUNCTUAL_KINDS & 2) != 0
-      if (type == 1) {
+#if (PN_PUNCTUAL_KINDS & PN_KIND_SPOT) != 0
+      if (type == PN_LIGHT_SPOT) {
         float cd = dot(uPunctualDir[i].xyz, -l);
         float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
         attenuation *= a * a;

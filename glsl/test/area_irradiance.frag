@@ -19,7 +19,7 @@ void main() {
   L.right = uLightRight;
   L.up = uLightUp;
   L.size = uLightSize;
-  L.disk = uDisk;
+  L.shape = uDisk ? PN_LIGHT_DISK : PN_LIGHT_RECT;
   vec3 p = uStart + uStep * floor(gl_FragCoord.x);
   fragColor = vec4(areaLightIrradiance(L, p, normalize(uNormal)), 0.0, 0.0, 1.0);
 }

@@ -9,6 +9,7 @@
 #include "gl/program.h"
 #include "gl_fixture.h"
 #include "passes/fullscreen_pass.h"
+#include "passes/limits.h"
 
 namespace penumbra::test {
 namespace {
@@ -24,6 +25,7 @@ constexpr int kPoints = 32;
 // Irradiance per unit luminance at kPoints points start + i * step with normal n, on the GPU.
 std::vector<float> gpuIrradiance(const LightDesc& l, glm::vec3 start, glm::vec3 step, glm::vec3 n) {
   gl::ShaderLibrary library;
+  library.setCommonDefines(passes::commonDefines());  // PN_LIGHT_DISK, ...
   auto pass = passes::FullscreenPass::create(library, "test/area_irradiance.frag");
   EXPECT_TRUE(pass.ok()) << (pass.ok() ? "" : pass.message());
   auto tex =

@@ -220,12 +220,9 @@ struct Light {
   // progressive.directionalAngle (an environment's sun carries its own).
   float angularDiameter = 0.0f;
 
-  bool isArea() const { return type == LightType::Rect || type == LightType::Disk; }
-  float area() const {
-    return type == LightType::Rect
-               ? width * height
-               : (type == LightType::Disk ? 0.785398163f * width * width : 0.0f);
-  }
+  // An emitting surface (rect, disk), and its area (0 for the others).
+  bool isArea() const;
+  float area() const;
 };
 
 struct Scene {

@@ -62,13 +62,13 @@ uint32_t LightingPass::punctualKinds(const LightingBatch& b) {
   for (const PunctualDraw& d : b.punctual) {
     const Light& l = *d.light;
     if (d.skyLoss) {
-      kinds |= 16;
+      kinds |= kKindSkyShadow;
     } else if (l.type == LightType::Point) {
-      kinds |= 1;
+      kinds |= kKindPoint;
     } else if (l.type == LightType::Spot) {
-      kinds |= 2;
+      kinds |= kKindSpot;
     } else {
-      kinds |= directionalDisk(l, *b.settings) > 0.0f ? 4 : 8;
+      kinds |= directionalDisk(l, *b.settings) > 0.0f ? kKindSun : kKindDirectional;
     }
   }
   return kinds;
@@ -142,7 +142,7 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
       {"PN_POINT_SHADOWS", flag(kPointShadows)},
       {"PN_LIGHT_CACHE_WRITE", std::to_string((pass >> kCachedLightsShift) & 7u)},
       {"PN_LIGHT_CACHE", flag(kLightCacheRead)},
-      {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & 31u)},
+      {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & kKindsAll)},
       {"PN_AREA_COUNT", std::to_string((pass >> kAreaCountShift) & 7u)},
       {"PN_AREA_STARTS", std::to_string((pass >> kAreaStartsShift) & 15u)},
       {"PN_PUNCTUAL_COUNT", std::to_string((pass >> kPunctualCountShift) & 15u)},
@@ -245,7 +245,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     dir.push_back(l.direction);
     right.push_back(l.right);
     up.push_back(l.up);
-    shape.emplace_back(l.width, l.height, l.type == LightType::Disk ? 1.0f : 0.0f,
+    shape.emplace_back(l.width, l.height, static_cast<float>(lightKind(l.type).shaderCode),
                        a.shadowed ? static_cast<float>(i) : -1.0f);
     radiance.push_back(l.color * l.intensity * a.weight);
     if (a.shadowed) {
@@ -281,8 +281,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   for (const PunctualDraw& pd : b.punctual) {
     if (static_cast<int>(ppos.size()) >= kMaxPunctualLights) break;
     const Light& l = *pd.light;
-    const float type = l.type == LightType::Point ? 0.0f : l.type == LightType::Spot ? 1.0f : 2.0f;
-    ppos.emplace_back(l.position, type);
+    ppos.emplace_back(l.position, static_cast<float>(lightKind(l.type).shaderCode));
     pdir.emplace_back(pd.direction, l.range);
     disk.emplace_back(l.direction, pd.skyLoss ? 0.0f : directionalDisk(l, *b.settings));
     if (pd.pointShadow >= 0) {

@@ -145,8 +145,8 @@ class LightingPass {
   static int lightCacheLayer(const LightingBatch& b, int lightIndex);
   // Whether batch b reads its probe volume's per-view cache (it has been made).
   static bool readsProbeCache(const LightingBatch& b);
-  // The kinds of punctual samples in a batch: 1 point, 2 spot, 4 directional with a disk,
-  // 8 directional without, 16 sky-shadow samples. Only their code is compiled.
+  // The kinds of punctual samples in a batch (PunctualKindBits, passes/limits.h): only their
+  // code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);
   // The batch's sample counts, and where its area samples' light changes, as pass bits: the
   // shader's loops over samples then run to a constant and unroll, so every uniform array is

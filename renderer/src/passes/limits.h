@@ -4,11 +4,14 @@
 // the texture units every program uses.
 #pragma once
 
+#include <cctype>
+#include <cstdint>
 #include <string>
 
 #include "gl/program.h"
 #include "gpu/texture_units.h"
 #include "penumbra/renderer.h"  // kMaxPunctualLights, public: RenderJob warns past it
+#include "scene/light_kinds.h"
 
 namespace penumbra::passes {
 
@@ -41,6 +44,18 @@ inline constexpr int kUnitBehind = kUnitOcclusion, kUnitGlassLight = kUnitProbeC
 // cube maps evaluates its lights instead).
 inline constexpr int kUnitLightCache = unitOf(TextureUnit::PointShadow1);
 
+// The kinds of punctual sample a lighting batch can hold, as bits of PN_PUNCTUAL_KINDS: only
+// the kinds a batch has are compiled (passes/lighting_pass.h punctualKinds). The shaders get
+// them as PN_KIND_POINT, ... (limitDefines).
+enum PunctualKindBits : uint32_t {
+  kKindPoint = 1,
+  kKindSpot = 2,
+  kKindSun = 4,          // directional with an angular size (a disk of directions)
+  kKindDirectional = 8,  // directional without
+  kKindSkyShadow = 16,   // a sky-shadow sample (chunks/punctual_term.glsl)
+  kKindsAll = 31,
+};
+
 // Probe volume: interior texels of a probe's octahedral irradiance, depth-moment and radiance
 // maps (each tile has a one-texel border), and the face size of a probe's cube capture.
 inline constexpr int kProbeIrradianceTexels = 6, kProbeDepthTexels = 10, kProbeRadianceTexels = 14,
@@ -54,7 +69,24 @@ inline gl::Defines limitDefines() {
           {"PN_PROBE_DEPTH_TEXELS", std::to_string(kProbeDepthTexels)},
           {"PN_PROBE_RADIANCE_TEXELS", std::to_string(kProbeRadianceTexels)},
           {"PN_PROBE_CAPTURE_SIZE", std::to_string(kProbeCaptureSize)},
-          {"PN_TEXTURE_SLOTS", std::to_string(kTextureSlotCount)}};
+          {"PN_TEXTURE_SLOTS", std::to_string(kTextureSlotCount)},
+          {"PN_KIND_POINT", std::to_string(kKindPoint)},
+          {"PN_KIND_SPOT", std::to_string(kKindSpot)},
+          {"PN_KIND_SUN", std::to_string(kKindSun)},
+          {"PN_KIND_DIRECTIONAL", std::to_string(kKindDirectional)},
+          {"PN_KIND_SKY_SHADOW", std::to_string(kKindSkyShadow)}};
+}
+
+// Every shader also gets each light kind's code (scene/light_kinds.h) as PN_LIGHT_<NAME>, e.g.
+// PN_LIGHT_DISK (uAreaShape.z) and PN_LIGHT_SPOT (uPunctualPos.w).
+inline gl::Defines commonDefines() {
+  gl::Defines d = limitDefines();
+  for (const LightKind& k : lightKinds()) {
+    std::string name = "PN_LIGHT_";
+    for (const char* c = k.name; *c; ++c) name += static_cast<char>(std::toupper(*c));
+    d.emplace_back(std::move(name), std::to_string(k.shaderCode));
+  }
+  return d;
 }
 
 }  // namespace penumbra::passes

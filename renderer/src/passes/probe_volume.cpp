@@ -7,6 +7,7 @@
 
 #include "passes/limits.h"
 #include "progressive/sequences.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra::passes {
 namespace {
@@ -141,7 +142,8 @@ Status ProbeVolume::renderLightMaps(const ProbeCaptureInputs& in) {
     for (const bool area : {true, false}) {
       for (size_t i = 0; i < in.lights.size(); ++i) {
         const Light& l = *in.lights[i].light;
-        if (l.type == LightType::Point || l.isArea() != area) continue;
+        const bool cube = lightKind(l.type).shadow == ShadowProjection::Cube;
+        if (cube || l.isArea() != area) continue;  // cube-mapped lights: below
         if (static_cast<int>(lightIndex_.size()) < kMaxCaptureLights) {
           lightIndex_.push_back(static_cast<int>(i));
         }
@@ -213,7 +215,7 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   }
   int pointMaps = 0;
   for (const CaptureLight& cl : in.lights) {
-    if (cl.light->type != LightType::Point) continue;
+    if (lightKind(cl.light->type).shadow != ShadowProjection::Cube) continue;
     PunctualDraw pd{cl.light, 1.0f, cl.light->direction};
     if (pointMaps < kMaxPointShadows && in.pointShadows) {
       auto view = in.pointShadows->ensure(pointMaps, *in.scene, cl.light->position);

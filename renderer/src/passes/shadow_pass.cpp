@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/light_kinds.h"
+
 namespace penumbra::passes {
 namespace {
 
@@ -125,7 +127,7 @@ ShadowView ShadowPass::render(int slot, const GpuScene& scene, const glm::vec3& 
 ShadowView ShadowPass::renderLight(int slot, const GpuScene& scene, const Light& light,
                                    const glm::vec3& origin, const glm::vec3& direction,
                                    int coverageFrame, int coverageStream) {
-  if (light.type == LightType::Directional) {
+  if (lightKind(light.type).shadow == ShadowProjection::Orthographic) {
     return render(slot, scene, fitDirectionalShadowView(direction, scene.bounds(), size_),
                   coverageFrame, coverageStream);
   }

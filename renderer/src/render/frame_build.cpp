@@ -15,7 +15,7 @@ progressive::FrameScene Renderer::Impl::frameScene(bool preview) const {
   fs.lights.reserve(lights.size());
   for (const Light& l : lights) {
     fs.lights.push_back({.area = l.isArea(),
-                         .point = l.type == LightType::Point,
+                         .point = lightKind(l.type).shadow == ShadowProjection::Cube,
                          .finite = std::isfinite(l.intensity) && std::isfinite(l.color.r) &&
                                    std::isfinite(l.color.g) && std::isfinite(l.color.b)});
   }

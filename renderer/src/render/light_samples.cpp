@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "progressive/sequences.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra::render {
 
@@ -53,14 +54,7 @@ glm::vec3 punctualDirection(const Light& l, glm::vec2 u, const RenderSettings& s
 }
 
 glm::vec3 samplePosition(const Light& l, glm::vec2 u) {
-  if (l.type == LightType::Disk) {
-    const glm::vec2 d = progressive::concentricDisk(u) * (0.5f * l.width);
-    return l.position + d.x * l.right + d.y * l.up;
-  }
-  if (l.type == LightType::Rect) {
-    return l.position + (u.x - 0.5f) * l.width * l.right + (u.y - 0.5f) * l.height * l.up;
-  }
-  return l.position;
+  return lightKind(l.type).samplePoint(l, u);
 }
 
 std::vector<passes::CaptureLight> captureLights(const std::vector<Light>& lights, glm::vec2 u,

@@ -35,6 +35,7 @@
 #include "progressive/frame_planner.h"
 #include "progressive/light_cache.h"
 #include "render/light_samples.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra {
 
@@ -60,7 +61,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::OcclusionPass> occlusionPass;
   std::optional<passes::FullscreenPass> tonemap;
-  passes::EffectChain effects;  // post effects before tone mapping
+  passes::EffectChain effects;                        // post effects before tone mapping
   std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
   int checkpointFrame = 0;  // the frame whose mean targets->checkpoint holds (0: none this view)
   std::optional<passes::FullscreenPass> tileMaskPass;  // made on first use
@@ -133,7 +134,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Status init() {
     caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
     PN_TRY(checkTextureUnits(caps.maxTextureUnits));
-    library.setCommonDefines(passes::limitDefines());
+    library.setCommonDefines(passes::commonDefines());
     auto lit = passes::LightingPass::create(library);
     if (!lit) return lit.error();
     lighting.emplace(std::move(*lit));
@@ -217,11 +218,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
     std::vector<progressive::LightInfo> infos;
     for (const Light& l : lights) {
       progressive::LightInfo info;
-      // A directional light's samples spread over its angular size: a disk of directions.
-      info.shape = l.type == LightType::Rect ? progressive::LightShape::Rect
-                   : l.type == LightType::Disk || l.type == LightType::Directional
-                       ? progressive::LightShape::Disk
-                       : progressive::LightShape::Point;
+      // (A directional light's samples spread over its angular size: a disk of directions.)
+      info.shape = lightKind(l.type).samples;
       info.aspect = l.height > 0 ? l.width / l.height : 1.0f;
       info.fromFrameOne = infos.size() == sunIndex;
       infos.push_back(info);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "scene/gltf_document.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra::gltf {
 namespace {
@@ -72,12 +73,10 @@ void addNodeLights(const Document& doc, const NodeDesc& node, const glm::mat4& w
     place(l);
     // The light's size scales with the largest axis of the node's world scale.
     const float scale = std::max({glm::length(axisX), glm::length(axisY), glm::length(axisZ)});
-    if (d.type == LightType::Rect) {
-      l.width = scale * d.size * d.aspect;
-      l.height = scale * d.size;
-    } else {
-      l.width = l.height = scale * d.size;
-    }
+    // A rect's size is its height and aspect its width / height; a disk's size its diameter.
+    l.width = scale * d.size *
+              (lightKind(d.type).samples == progressive::LightShape::Rect ? d.aspect : 1.0f);
+    l.height = scale * d.size;
     const bool frame = glm::length(l.direction) > 0.0f && glm::length(l.right) > 0.0f &&
                        glm::length(l.up) > 0.0f && finiteVec(l.position);
     if (!(l.intensity >= 0.0f) || !std::isfinite(l.intensity)) {

@@ -9,13 +9,10 @@
 
 #include "scene/gltf_document.h"
 #include "scene/gltf_json.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra::gltf {
 namespace {
-
-LightType areaType(const std::string& s) {
-  return s == "disk" ? LightType::Disk : LightType::Rect;
-}
 
 // The sizes of the top-level arrays, which every index is checked against.
 struct Counts {
@@ -190,10 +187,9 @@ void parseLights(Parser& p, const json& root, Document& doc, [[maybe_unused]] Lo
         LightDesc d;
         d.name = p.string(l, "name", lp);
         const std::string type = p.string(l, "type", lp, "rect");
-        if (type != "rect" && type != "disk") {
-          ctx.warn(lp + ": unknown area light type '" + type + "', treated as 'rect'");
-        }
-        d.type = areaType(type);
+        const LightKind* kind = lightKindNamed(type, true);
+        if (!kind) ctx.warn(lp + ": unknown area light type '" + type + "', treated as 'rect'");
+        d.type = kind ? kind->type : LightType::Rect;
         d.color = p.vec<3>(l, "color", lp, glm::vec3(1.0f));
         // NaN cannot be written in JSON; a negative intensity is dropped later with a warning.
         d.intensity = static_cast<float>(p.number(l, "intensity", lp, 1000.0));
@@ -214,12 +210,8 @@ void parseLights(Parser& p, const json& root, Document& doc, [[maybe_unused]] Lo
         LightDesc d;
         d.name = p.string(l, "name", lp);
         const std::string type = p.string(l, "type", lp, "", true);
-        if (type == "point") {
-          d.type = LightType::Point;
-        } else if (type == "spot") {
-          d.type = LightType::Spot;
-        } else if (type == "directional") {
-          d.type = LightType::Directional;
+        if (const LightKind* kind = lightKindNamed(type, false)) {
+          d.type = kind->type;
         } else if (!p.failed()) {
           p.fail(lp + ".type", "unknown punctual light type '" + type + "'");
         }
