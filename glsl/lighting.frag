@@ -1,7 +1,8 @@
 // Forward shading of one intermediate frame: split-sum environment light (with this frame's
 // occlusion sample once the prepass exists), this frame's area-light samples (each weighted by
 // the sample distributor and shadowed by its own shadow map), punctual lights and emission.
-// Generated defines pick the variant, so frame 1 (environment only) runs a plain forward pass:
+// Generated defines pick the variant (one table: passes/lighting_variant.h), so frame 1
+// (environment only) runs a plain forward pass:
 //   PN_OCCLUSION  progressive occlusion and screen-space indirect light
 //   PN_AREA       area-light samples with shadow maps
 //   PN_PUNCTUAL   KHR_lights_punctual lights

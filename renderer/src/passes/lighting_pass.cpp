@@ -94,62 +94,45 @@ bool LightingPass::readsProbeCache(const LightingBatch& b) {
   return b.readProbeCache && b.probes && b.targets->probeCache;
 }
 
-uint32_t LightingPass::sampleBits(const LightingBatch& b, bool area, bool punctual) {
+void LightingPass::setSampleCounts(LightingVariant& v, const LightingBatch& b) {
   static_assert(kMaxShadowMaps < 8 && kMaxPunctualLights < 16, "counts overflow their bits");
-  uint32_t bits = 0;
-  if (area) {
+  if (v.area) {
     const size_t n = std::min(b.area.size(), static_cast<size_t>(kMaxShadowMaps));
-    uint32_t starts = 0;
     for (size_t i = 0; i < n; ++i) {
-      if (i == 0 || b.area[i].lightIndex != b.area[i - 1].lightIndex) starts |= 1u << i;
+      if (i == 0 || b.area[i].lightIndex != b.area[i - 1].lightIndex) v.areaStarts |= 1u << i;
     }
-    bits |= static_cast<uint32_t>(n) << kAreaCountShift | starts << kAreaStartsShift;
+    v.areaCount = static_cast<uint32_t>(n);
   }
-  if (punctual) {
-    const size_t n = std::min(b.punctual.size(), static_cast<size_t>(kMaxPunctualLights));
-    bits |= static_cast<uint32_t>(n) << kPunctualCountShift;
+  if (v.punctual) {
+    v.punctualCount =
+        static_cast<uint32_t>(std::min(b.punctual.size(), static_cast<size_t>(kMaxPunctualLights)));
   }
-  return bits;
 }
 
-uint32_t LightingPass::passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual) {
-  const bool probes = b.probes && b.probes->active();
-  const bool cache = readsProbeCache(b);
-  const bool cubeMaps =
+LightingVariant LightingPass::variant(const LightingBatch& b, bool occlusion, bool area,
+                                      bool punctual) {
+  LightingVariant v;
+  v.occlusion = occlusion;
+  v.area = area;
+  v.punctual = punctual;
+  v.probes = b.probes && b.probes->active();
+  v.probeCache = readsProbeCache(b);
+  v.pointShadows =
       punctual && std::any_of(b.punctual.begin(), b.punctual.end(),
                               [](const PunctualDraw& d) { return d.pointShadow >= 0; });
-  return (occlusion ? kOcclusion : 0u) | (area ? kArea : 0u) | (punctual ? kPunctual : 0u) |
-         (probes ? kProbes : 0u) | (cache ? kProbeCache : 0u) | (cubeMaps ? kPointShadows : 0u) |
-         (punctual ? punctualKinds(b) << kKindsShift : 0u) |
-         (area && readsLightCache(b) ? kLightCacheRead : 0u) | sampleBits(b, area, punctual) |
-         (b.accumulateFrame > 0 ? kAccumulate : 0u);
+  v.punctualKinds = punctual ? punctualKinds(b) : 0u;
+  v.lightCache = area && readsLightCache(b);
+  v.accumulate = b.accumulateFrame > 0;
+  setSampleCounts(v, b);
+  return v;
 }
 
-Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
+Result<gl::Program*> LightingPass::program(LightingVariant v, uint32_t features) {
   // Smooth materials evaluate their lights every frame (gpu_scene.h kFeatureLightCacheable).
-  if (!(features & kFeatureLightCacheable)) pass &= ~static_cast<uint32_t>(kLightCacheRead);
-  const uint64_t key = (static_cast<uint64_t>(pass) << 32) | features;
+  if (!(features & kFeatureLightCacheable)) v.lightCache = 0;
+  const uint64_t key = (static_cast<uint64_t>(v.key()) << 32) | features;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
-  const auto flag = [pass](uint32_t bit) { return std::string((pass & bit) ? "1" : "0"); };
-  gl::Defines defines = {
-      {"PN_OCCLUSION", flag(kOcclusion)},
-      {"PN_AREA", flag(kArea)},
-      {"PN_PUNCTUAL", flag(kPunctual)},
-      {"PN_CAPTURE", flag(kCapture)},
-      {"PN_PROBE_CACHE_WRITE", flag(kCacheWrite)},
-      {"PN_PROBES", flag(kProbes)},
-      {"PN_PROBE_CACHE", flag(kProbeCache)},
-      {"PN_POINT_SHADOWS", flag(kPointShadows)},
-      {"PN_LIGHT_CACHE_WRITE", std::to_string((pass >> kCachedLightsShift) & 7u)},
-      {"PN_LIGHT_CACHE", flag(kLightCacheRead)},
-      {"PN_PUNCTUAL_KINDS", std::to_string((pass >> kKindsShift) & kKindsAll)},
-      {"PN_AREA_COUNT", std::to_string((pass >> kAreaCountShift) & 7u)},
-      {"PN_AREA_STARTS", std::to_string((pass >> kAreaStartsShift) & 15u)},
-      {"PN_PUNCTUAL_COUNT", std::to_string((pass >> kPunctualCountShift) & 15u)},
-      {"PN_ACCUMULATE", flag(kAccumulate)},
-      {"PN_TRANSMISSION", (pass & kTransmitCompose) ? "2"
-                          : (pass & kTransmitOwn)   ? "1"
-                                                    : "0"}};
+  gl::Defines defines = v.defines();
   for (auto& d : materialDefines(features)) defines.push_back(std::move(d));
   auto p = library_->program("mesh.vert", "lighting.frag", defines);
   if (!p) return p.error();
@@ -157,17 +140,17 @@ Result<gl::Program*> LightingPass::program(uint32_t pass, uint32_t features) {
   return *p;
 }
 
-Status LightingPass::drawByMaterial(uint32_t pass, const GpuScene& scene,
+Status LightingPass::drawByMaterial(const LightingVariant& v, const GpuScene& scene,
                                     const std::vector<DrawItem>& items, gl::PipelineState state,
                                     const std::function<void(const gl::Program&)>& setup,
                                     int instances) {
   std::vector<const gl::Program*> ready;  // set up in this call
   const gl::Program* current = nullptr;
-  const bool cacheWrite = ((pass >> kCachedLightsShift) & 7u) != 0;
+  const bool cacheWrite = v.lightCacheWrite != 0;
   for (const DrawItem& item : items) {
     const uint32_t features = scene.material(item.material).features;
     if (cacheWrite && !(features & kFeatureLightCacheable)) continue;  // they never read it
-    auto p = program(pass, features);
+    auto p = program(v, features);
     if (!p) return p.error();
     if (*p != current) {
       current = *p;
@@ -343,7 +326,8 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
                                  float skyDistance) {
   if (!b.scene || views.empty()) return {};
   const glm::mat3 envRotation = environmentLookup(*b.settings);
-  const uint32_t pass = kCapture | passBits(b, false, !b.area.empty(), !b.punctual.empty());
+  LightingVariant pass = variant(b, false, !b.area.empty(), !b.punctual.empty());
+  pass.capture = 1;
   gl::PipelineState state;
   if (!b.first) {
     state.depthTest = gl::DepthTest::LessEqual;
@@ -407,7 +391,8 @@ Status LightingPass::writeProbeCache(const LightingBatch& b, const glm::mat3& en
   writing.readProbeCache = false;  // the targets being written are not sampled
   writing.accumulateFrame = 0;
   const auto setupCache = [&](const gl::Program& p) { setUniforms(p, writing, envRotation); };
-  const uint32_t cachePass = kCacheWrite | passBits(writing, false, false, false);
+  LightingVariant cachePass = variant(writing, false, false, false);
+  cachePass.probeCacheWrite = 1;
   gl::PipelineState cacheState;
   cacheState.depthTest = gl::DepthTest::LessEqual;
   cacheState.depthWrite = false;
@@ -441,13 +426,13 @@ Status LightingPass::writeLightCache(const LightingBatch& b, const glm::mat3& en
     setUniforms(p, writing, envRotation);
     p.set("uLightCacheWeight", b.lightCacheWeight);
   };
-  const uint32_t cachePass =
-      (static_cast<uint32_t>(layers) << kCachedLightsShift) | passBits(writing, false, true, false);
+  LightingVariant cachePass = variant(writing, false, true, false);
+  cachePass.lightCacheWrite = static_cast<uint32_t>(layers);
   return drawByMaterial(cachePass, *b.scene, b.scene->opaque(), cacheState, setupCache);
 }
 
 // BLEND surfaces without stochastic coverage: alpha-blended back to front over the frame.
-Status LightingPass::drawBlendedSorted(const LightingBatch& b, uint32_t pass,
+Status LightingPass::drawBlendedSorted(const LightingBatch& b, const LightingVariant& pass,
                                        const std::function<void(const gl::Program&)>& setup) {
   const CameraMatrices& cm = *b.camera;
   std::vector<DrawItem> sorted = b.scene->blended();
@@ -481,8 +466,8 @@ Status LightingPass::drawTransmissiveOwn(const LightingBatch& b, const glm::mat3
   own.depthTest = gl::DepthTest::LessEqual;
   own.depthWrite = false;
   own.blend = gl::Blend::Additive;
-  const uint32_t glassPass =
-      kTransmitOwn | passBits(glass, b.occlusion, !b.area.empty(), !b.punctual.empty());
+  LightingVariant glassPass = variant(glass, b.occlusion, !b.area.empty(), !b.punctual.empty());
+  glassPass.transmission = 1;
   PN_TRY(drawByMaterial(glassPass, *b.scene, b.scene->transmissive(), own,
                         [&](const gl::Program& p) { setUniforms(p, glass, envRotation); }));
   b.targets->frame.framebuffer.bind();
@@ -525,7 +510,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     PN_TRY(writeLightCache(b, envRotation));
     out.bind();
   }
-  const uint32_t pass = passBits(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
+  const LightingVariant pass = variant(b, b.occlusion, !b.area.empty(), !b.punctual.empty());
   const auto setup = [&](const gl::Program& p) { setUniforms(p, b, envRotation); };
   gl::PipelineState opaque;
   opaque.depthTest = gl::DepthTest::LessEqual;
@@ -565,8 +550,10 @@ Status LightingPass::composeTransmission(const LightingBatch& b) {
   // it transmits of the copy.
   gl::PipelineState state;
   state.depthTest = gl::DepthTest::LessEqual;
-  return drawByMaterial(kTransmitCompose | passBits(compose, b.occlusion, false, false), *b.scene,
-                        b.scene->transmissive(), state, [&](const gl::Program& p) {
+  LightingVariant composing = variant(compose, b.occlusion, false, false);
+  composing.transmission = 2;
+  return drawByMaterial(composing, *b.scene, b.scene->transmissive(), state,
+                        [&](const gl::Program& p) {
                           setUniforms(p, compose, envRotation);
                           // After setUniforms, which binds the probe cache's units (shared).
                           t.behind.color.bind(kUnitBehind);

@@ -20,6 +20,7 @@
 #include "gpu/gpu_scene.h"
 #include "passes/camera_math.h"
 #include "passes/fullscreen_pass.h"
+#include "passes/lighting_variant.h"
 #include "passes/point_shadow_pass.h"
 #include "passes/shadow_pass.h"
 #include "passes/targets.h"
@@ -120,27 +121,6 @@ class LightingPass {
   static bool readsLightCache(const LightingBatch& b);
 
  private:
-  // lighting.frag variants: a pass's bits and a material's features (gpu/gpu_scene.h) make
-  // one program, built on first use.
-  enum PassBits : uint32_t {
-    kOcclusion = 1,
-    kArea = 2,
-    kPunctual = 4,
-    kCapture = 8,
-    kCacheWrite = 16,
-    kTransmitOwn = 32,           // PN_TRANSMISSION 1
-    kTransmitCompose = 64,       // PN_TRANSMISSION 2
-    kProbes = 128,               // PN_PROBES: the probe volume is on
-    kProbeCache = 256,           // PN_PROBE_CACHE: its per-view cache is read
-    kPointShadows = 512,         // PN_POINT_SHADOWS: a punctual sample has a point light's cube map
-    kKindsShift = 10,            // PN_PUNCTUAL_KINDS (punctualKinds) from this bit on
-    kLightCacheRead = 1u << 16,  // PN_LIGHT_CACHE: area-light samples read the lights' cache
-    kCachedLightsShift = 17,     // PN_LIGHT_CACHE_WRITE: lights written to it (0: none)
-    kAreaCountShift = 20,        // PN_AREA_COUNT: the batch's area-light samples (3 bits)
-    kAreaStartsShift = 23,       // PN_AREA_STARTS: samples whose light differs from the last's
-    kPunctualCountShift = 27,    // PN_PUNCTUAL_COUNT: the batch's punctual samples (4 bits)
-    kAccumulate = 1u << 31,      // PN_ACCUMULATE: the batch adds its sample to the mean
-  };
   // The cache layer of scene light `lightIndex` in batch b (-1: not cached).
   static int lightCacheLayer(const LightingBatch& b, int lightIndex);
   // Whether batch b reads its probe volume's per-view cache (it has been made).
@@ -148,21 +128,22 @@ class LightingPass {
   // The kinds of punctual samples in a batch (PunctualKindBits, passes/limits.h): only their
   // code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);
-  // The batch's sample counts, and where its area samples' light changes, as pass bits: the
+  // The batch's sample counts, and where its area samples' light changes, into v: the
   // shader's loops over samples then run to a constant and unroll, so every uniform array is
   // read at a constant index (llvmpipe reads one at a loop counter lane by lane). A plan has a
   // few counts per batch, so a few more programs.
-  static uint32_t sampleBits(const LightingBatch& b, bool area, bool punctual);
-  // The bits of batch b's own probe state and the given terms.
-  static uint32_t passBits(const LightingBatch& b, bool occlusion, bool area, bool punctual);
-  Result<gl::Program*> program(uint32_t pass, uint32_t features);
+  static void setSampleCounts(LightingVariant& v, const LightingBatch& b);
+  // The variant of batch b's own probe state and the given terms.
+  static LightingVariant variant(const LightingBatch& b, bool occlusion, bool area, bool punctual);
+  // lighting.frag for a variant and a material's features (gpu/gpu_scene.h), built on first use.
+  Result<gl::Program*> program(LightingVariant v, uint32_t features);
   // The running mean's inputs of a batch that accumulates as it draws (accumulateFrame).
   static void setAccumulation(const gl::Program& p, const LightingBatch& b);
   // Draws items, each with the program of its pass and material; `setup` makes a program
   // current and sets the batch's uniforms on it the first time this call uses it. With
   // `instances` > 0 both faces of every item are drawn that many times (probe captures).
-  Status drawByMaterial(uint32_t pass, const GpuScene& scene, const std::vector<DrawItem>& items,
-                        gl::PipelineState state,
+  Status drawByMaterial(const LightingVariant& v, const GpuScene& scene,
+                        const std::vector<DrawItem>& items, gl::PipelineState state,
                         const std::function<void(const gl::Program&)>& setup, int instances = 0);
   void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
   // The parts of draw(): the depth-only pass, the per-view caches' writes, the sorted BLEND
@@ -170,7 +151,7 @@ class LightingPass {
   void drawDepth(const LightingBatch& b);
   Status writeProbeCache(const LightingBatch& b, const glm::mat3& envRotation);
   Status writeLightCache(const LightingBatch& b, const glm::mat3& envRotation);
-  Status drawBlendedSorted(const LightingBatch& b, uint32_t pass,
+  Status drawBlendedSorted(const LightingBatch& b, const LightingVariant& v,
                            const std::function<void(const gl::Program&)>& setup);
   Status drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation);
   void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
@@ -178,7 +159,7 @@ class LightingPass {
                       const CameraMatrices& camera, float blur, float alpha);
 
   gl::ShaderLibrary* library_ = nullptr;
-  std::unordered_map<uint64_t, gl::Program*> programs_;  // (pass << 32) | features
+  std::unordered_map<uint64_t, gl::Program*> programs_;  // (variant key << 32) | features
   gl::Program* depthOnly_ = nullptr;
   std::optional<FullscreenPass> background_;
   std::optional<FullscreenPass> backgroundAccumulating_;  // PN_ACCUMULATE
