@@ -184,6 +184,10 @@ struct Instance {
   // light itself is not geometry, so its stand-in blocks no other light (as path tracers treat
   // lamp proxies). It is still seen by the camera.
   bool castsShadow = true;
+  // Its emissive primitives sit on an area light (a lamp mesh, found by the loader without
+  // markup): those primitives are treated as the light's visible face, as castsShadow false
+  // treats the whole node; the rest of the mesh (a lamp's shade) stays ordinary geometry.
+  bool lampFace = false;
 };
 
 struct Camera {

@@ -103,7 +103,14 @@ void GpuScene::buildDrawItems(const Scene& scene) {
       item.model = inst.world;
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
-      item.castsShadow = inst.castsShadow;
+      const Material* pm = p->material >= 0 && p->material < defaultMaterial
+                               ? &scene.materials[static_cast<size_t>(p->material)]
+                               : nullptr;
+      const bool glows = pm && glm::max(pm->emissiveFactor.r,
+                                        glm::max(pm->emissiveFactor.g, pm->emissiveFactor.b)) *
+                                       pm->emissiveStrength >
+                                   0.0f;
+      item.castsShadow = inst.castsShadow && !(inst.lampFace && glows);
       Bounds wb;
       if (p->bounds.valid()) {
         for (int c = 0; c < 8; ++c) {

@@ -130,6 +130,10 @@ struct NodeDesc {
   int punctualLight = -1;   // KHR_lights_punctual
   bool lightProxy = false;  // extras.area_light_proxy: the visible face of an area light
   glm::mat4 local{1.0f};
+  // EXT_mesh_gpu_instancing: accessors of the instances' TRANSLATION, ROTATION and SCALE
+  // (-1: none); `instanced` when the node has the extension at all.
+  bool instanced = false;
+  int instanceTranslation = -1, instanceRotation = -1, instanceScale = -1;
 };
 
 struct SceneDesc {
@@ -138,7 +142,9 @@ struct SceneDesc {
 };
 
 // A material's texture infos, indexed by penumbra::TextureSlot (penumbra/scene.h).
-constexpr size_t slotIndex(TextureSlot slot) { return static_cast<size_t>(slot); }
+constexpr size_t slotIndex(TextureSlot slot) {
+  return static_cast<size_t>(slot);
+}
 
 struct TextureInfoDesc {
   int texture = -1;  // glTF texture index; -1 = none
@@ -239,6 +245,20 @@ struct ViewBytes {
   uint64_t stride = 0;  // the view's byteStride (0 = tightly packed)
 };
 Result<ViewBytes> viewBytes(Document& doc, int view, LoadContext& ctx);
+
+// ---- lamp_faces.cpp ----
+// Marks instances whose emissive primitives sit on an area light as that light's visible face
+// (Instance::lampFace), with a warning each.
+void markLampFaces(Scene& scene, LoadContext& ctx);
+
+// ---- gltf_instancing.cpp ----
+// EXT_mesh_gpu_instancing: each instance's transform relative to the node (T * R * S from its
+// TRANSLATION, ROTATION and SCALE accessors), in instance order. Errors on accessors of the
+// wrong type or of different counts; at most kMaxInstances per node, and the instances' memory
+// is reserved from the budget.
+inline constexpr uint64_t kMaxInstances = uint64_t{1} << 20;
+Result<std::vector<glm::mat4>> instanceTransforms(Document& doc, const NodeDesc& node,
+                                                  int nodeIndex, LoadContext& ctx);
 
 // ---- gltf_parse.cpp (with gltf_json.h) ----
 Result<Document> parseDocument(std::string_view json, LoadContext& ctx);

@@ -15,7 +15,7 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 15> kSupportedExtensions = {
+constexpr std::array<std::string_view, 16> kSupportedExtensions = {
     "KHR_texture_transform",      "KHR_materials_emissive_strength",
     "KHR_lights_punctual",        "EXT_lights_area",
     "KHR_mesh_quantization",      "KHR_draco_mesh_compression",
@@ -23,7 +23,7 @@ constexpr std::array<std::string_view, 15> kSupportedExtensions = {
     "KHR_materials_specular",     "KHR_materials_unlit",
     "KHR_materials_clearcoat",    "KHR_materials_sheen",
     "KHR_materials_transmission", "KHR_materials_volume",
-    "KHR_texture_basisu",
+    "KHR_texture_basisu",         "EXT_mesh_gpu_instancing",
 };
 
 bool isSupported(const std::string& ext) {
@@ -150,7 +150,16 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
         m = static_cast<int>(meshOrder.size());
         meshOrder.push_back(node.mesh);
       }
-      scene.instances.push_back(Instance{m, world, node.name, !node.lightProxy});
+      if (node.instanced) {
+        // EXT_mesh_gpu_instancing: one scene instance per copy (gltf_instancing.cpp).
+        auto copies = gltf::instanceTransforms(doc, node, index, ctx);
+        if (!copies.ok()) return copies.error();
+        for (const glm::mat4& local : *copies) {
+          scene.instances.push_back(Instance{m, world * local, node.name, !node.lightProxy});
+        }
+      } else {
+        scene.instances.push_back(Instance{m, world, node.name, !node.lightProxy});
+      }
     }
     if (node.camera >= 0) gltf::addNodeCamera(doc, node, world, scene, ctx);
     gltf::addNodeLights(doc, node, world, scene, ctx);
@@ -171,6 +180,7 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
       extendBounds(scene.bounds, p.bounds, inst.world);
     }
   }
+  gltf::markLampFaces(scene, ctx);
   if (scene.instances.empty()) {
     ctx.warn("the scene has no meshes; only the environment will be visible");
   }

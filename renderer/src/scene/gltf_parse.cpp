@@ -275,6 +275,16 @@ void parseNodes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Loa
         n.punctualLight = p.index(*l, "light", path + ".extensions.KHR_lights_punctual",
                                   doc.punctualLights.size(), "KHR_lights_punctual lights", true);
       }
+      const std::string ip = path + ".extensions.EXT_mesh_gpu_instancing";
+      if (const json* in = p.object(*ext, "EXT_mesh_gpu_instancing", path + ".extensions")) {
+        n.instanced = true;
+        if (const json* at = p.object(*in, "attributes", ip)) {
+          const std::string ap = ip + ".attributes";
+          n.instanceTranslation = p.index(*at, "TRANSLATION", ap, count.accessors, "accessors");
+          n.instanceRotation = p.index(*at, "ROTATION", ap, count.accessors, "accessors");
+          n.instanceScale = p.index(*at, "SCALE", ap, count.accessors, "accessors");
+        }
+      }
     }
     doc.nodes.push_back(std::move(n));
   });
