@@ -10,9 +10,6 @@
 namespace penumbra::ibl {
 namespace {
 
-bool isPowerOfTwo(int v) {
-  return v > 0 && (v & (v - 1)) == 0;
-}
 
 // A box-filtered pyramid of the panorama's RGB, for area-filtered minification.
 struct PanoramaLevel {

@@ -11,6 +11,7 @@
 
 #include "image/image_internal.h"
 #include "image/rgbe.h"
+#include "ibl/sampling.h"
 
 namespace penumbra {
 namespace {
@@ -22,9 +23,6 @@ std::string dumpJson(const Json& j, int indent = -1) {
   return j.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
-bool isPowerOfTwo(int v) {
-  return v > 0 && (v & (v - 1)) == 0;
-}
 
 int maxMipCount(int faceSize) {
   int count = 1;
@@ -34,7 +32,7 @@ int maxMipCount(int faceSize) {
 
 Status checkEnvironment(const PackedEnvironment& env) {
   const ibl::Cubemap& cube = env.specular;
-  if (!isPowerOfTwo(cube.size) || cube.size > 16384) {
+  if (!ibl::isPowerOfTwo(cube.size) || cube.size > 16384) {
     return makeError("face size must be a power of two up to 16384, got " +
                      std::to_string(cube.size));
   }
@@ -214,7 +212,7 @@ Result<PackedEnvironment> readPackedEnvironmentFromMemory(std::span<const uint8_
   }
   int faceSize = 0;
   int mipCount = 0;
-  if (!getInt(j, "faceSize", faceSize) || !isPowerOfTwo(faceSize) || faceSize > 16384) {
+  if (!getInt(j, "faceSize", faceSize) || !ibl::isPowerOfTwo(faceSize) || faceSize > 16384) {
     return makeError(where + "manifest faceSize must be a power of two up to 16384");
   }
   if (!getInt(j, "mipCount", mipCount) || mipCount < 1 || mipCount > maxMipCount(faceSize)) {

@@ -42,9 +42,6 @@ constexpr float kLodBias = 1.0f;
 // At most this many cells of bright excess are summed exactly rather than sampled.
 constexpr size_t kMaxBrightCells = 512;
 
-bool isPowerOfTwo(int v) {
-  return v > 0 && (v & (v - 1)) == 0;
-}
 
 int log2Int(int v) {
   int l = 0;

@@ -16,6 +16,10 @@ namespace penumbra::ibl {
 
 inline constexpr float kPi = 3.14159265358979323846f;
 
+inline bool isPowerOfTwo(int v) {
+  return v > 0 && (v & (v - 1)) == 0;
+}
+
 // ---- Low-discrepancy points ------------------------------------------------------------------
 
 // Van der Corput radical inverse in base 2 (bit reversal), in [0, 1).

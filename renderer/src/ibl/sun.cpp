@@ -12,7 +12,7 @@
 namespace penumbra::ibl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiD = 3.14159265358979323846;
 
 float luminance(const float* p, int channels) {
   if (channels < 3) return p[0];
@@ -30,7 +30,7 @@ std::optional<Sun> extractSun(Image& panorama, const SunOptions& options) {
   // Solid angle of a pixel of row y: (2 pi / w) (pi / h) sin(polar angle).
   std::vector<double> rowOmega(static_cast<size_t>(h));
   for (int y = 0; y < h; ++y) {
-    rowOmega[static_cast<size_t>(y)] = (2.0 * kPi / w) * (kPi / h) * std::sin(kPi * (y + 0.5) / h);
+    rowOmega[static_cast<size_t>(y)] = (2.0 * kPiD / w) * (kPiD / h) * std::sin(kPiD * (y + 0.5) / h);
   }
   double total = 0.0;
   float peak = 0.0f;
@@ -47,14 +47,14 @@ std::optional<Sun> extractSun(Image& panorama, const SunOptions& options) {
     }
   }
   const bool automatic = options.threshold < 0.0f;
-  const double mean = total / (4.0 * kPi);
+  const double mean = total / (4.0 * kPiD);
   const float threshold =
       automatic ? static_cast<float>(kSunAutoMeanMultiple * mean) : options.threshold;
   if (!(peak > threshold) || !(threshold > 0.0f)) return std::nullopt;
 
   // The connected region above the threshold around the peak (4-neighbours, wrapping in x).
   // An automatic sun is compact: stop as soon as the region is larger than a sun may be.
-  const double maxOmega = 2.0 * kPi * (1.0 - std::cos(static_cast<double>(kSunMaxAngularRadius)));
+  const double maxOmega = 2.0 * kPiD * (1.0 - std::cos(static_cast<double>(kSunMaxAngularRadius)));
   std::vector<uint8_t> seen(static_cast<size_t>(w) * h, 0);
   std::vector<int> region, stack{peakY * w + peakX};
   seen[static_cast<size_t>(stack.back())] = 1;
@@ -114,7 +114,7 @@ std::optional<Sun> extractSun(Image& panorama, const SunOptions& options) {
   Sun sun;
   sun.direction = glm::vec3(direction);
   // At least a quarter of a pixel: a sun narrower than the panorama resolves has that size.
-  sun.angularRadius = static_cast<float>(std::max(radius, 0.25 * kPi / h));
+  sun.angularRadius = static_cast<float>(std::max(radius, 0.25 * kPiD / h));
   sun.irradiance = glm::vec3(energy);
   sun.threshold = threshold;
   return sun;
