@@ -114,11 +114,14 @@ struct PrimitiveDesc {
   int material = -1;
   int mode = 4;
   std::optional<DracoDesc> draco;
+  // Morph targets: per target, attribute name (POSITION, NORMAL, TANGENT) -> accessor.
+  std::vector<std::map<std::string, int>> targets;
 };
 
 struct MeshDesc {
   std::string name;
   std::vector<PrimitiveDesc> primitives;
+  std::vector<float> weights;  // the morph targets' default weights
 };
 
 struct NodeDesc {
@@ -134,6 +137,14 @@ struct NodeDesc {
   // (-1: none); `instanced` when the node has the extension at all.
   bool instanced = false;
   int instanceTranslation = -1, instanceRotation = -1, instanceScale = -1;
+  // The morph weights of this node's mesh (replacing the mesh's own when present).
+  std::optional<std::vector<float>> weights;
+  int skin = -1;
+};
+
+struct SkinDesc {
+  std::vector<int> joints;       // node indices
+  int inverseBindMatrices = -1;  // MAT4 accessor; -1: identities
 };
 
 struct SceneDesc {
@@ -209,6 +220,7 @@ struct Document {
   std::vector<CameraDesc> cameras;
   std::vector<LightDesc> areaLights;
   std::vector<LightDesc> punctualLights;
+  std::vector<SkinDesc> skins;
 
   // Buffer contents (after loadBuffers): spans into `ownedBuffers` or into the caller's GLB
   // bytes (which outlive the load). A meshopt fallback buffer without data has an empty span.
@@ -245,6 +257,24 @@ struct ViewBytes {
   uint64_t stride = 0;  // the view's byteStride (0 = tightly packed)
 };
 Result<ViewBytes> viewBytes(Document& doc, int view, LoadContext& ctx);
+
+// ---- gltf_morph.cpp ----
+// Applies a primitive's morph targets with `weights` (a still renderer shows the model at
+// rest: the file's default weights) to its positions, and to its normals and tangents where
+// the targets carry them. Extra weights or targets beyond the shorter list are ignored.
+Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vector<float>& weights,
+                         Primitive& prim, LoadContext& ctx, const std::string& what);
+
+// ---- gltf_skin.cpp ----
+// Each joint's matrix of skin `skin` (its node's world transform times its inverse bind
+// matrix): what applySkin poses a mesh with.
+Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
+                                             const std::vector<glm::mat4>& nodeWorld,
+                                             LoadContext& ctx);
+// Poses a primitive by its JOINTS_0 and WEIGHTS_0 with `joints` (from jointMatrices): its
+// positions, normals and tangents end up in world space, as glTF defines for skinned meshes.
+Status applySkin(Document& doc, const PrimitiveDesc& pd, const std::vector<glm::mat4>& joints,
+                 Primitive& prim, LoadContext& ctx, const std::string& what);
 
 // ---- lamp_faces.cpp ----
 // Marks instances whose emissive primitives sit on an area light as that light's visible face
@@ -297,7 +327,10 @@ bool hasMeshopt();
 
 // ---- gltf_meshes.cpp ----
 // Converts one glTF mesh (doc.materials tells which primitives need generated tangents).
-Result<Mesh> convertMesh(Document& doc, int meshIndex, LoadContext& ctx);
+// `weights`: the morph weights to pose it with (empty: the mesh's own defaults); `joints`:
+// the skin's joint matrices to pose it with (empty: not skinned).
+Result<Mesh> convertMesh(Document& doc, int meshIndex, const std::vector<float>& weights,
+                         const std::vector<glm::mat4>& joints, LoadContext& ctx);
 
 // ---- tangents.cpp ----
 // Area-weighted smooth vertex normals over the triangles of `prim` (flat where the caller

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <map>
 #include <string_view>
+#include <tuple>
 
 #include "scene/gltf_document.h"
 
@@ -89,6 +91,29 @@ Status checkNodeGraph(const Document& doc, std::vector<int>& parent, LoadContext
   return {};
 }
 
+// Every node's world transform (the parent links are checked acyclic), for skins' joints,
+// which need not lie under the scene's roots.
+std::vector<glm::mat4> worldTransforms(const Document& doc, const std::vector<int>& parent) {
+  const size_t n = doc.nodes.size();
+  std::vector<glm::mat4> world(n);
+  std::vector<bool> done(n, false);
+  std::vector<int> chain;
+  for (size_t i = 0; i < n; ++i) {
+    chain.clear();
+    for (int v = static_cast<int>(i); v >= 0 && !done[static_cast<size_t>(v)];
+         v = parent[static_cast<size_t>(v)]) {
+      chain.push_back(v);
+    }
+    for (auto c = chain.rbegin(); c != chain.rend(); ++c) {
+      const int up = parent[static_cast<size_t>(*c)];
+      const glm::mat4 base = up >= 0 ? world[static_cast<size_t>(up)] : glm::mat4(1.0f);
+      world[static_cast<size_t>(*c)] = base * doc.nodes[static_cast<size_t>(*c)].local;
+      done[static_cast<size_t>(*c)] = true;
+    }
+  }
+  return world;
+}
+
 void extendBounds(Bounds& b, const Bounds& local, const glm::mat4& m) {
   if (!local.valid()) return;
   for (int corner = 0; corner < 8; ++corner) {
@@ -128,8 +153,12 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   }
 
   Scene scene;
-  std::vector<int> meshRemap(doc.meshes.size(), -1);
-  std::vector<int> meshOrder;
+  // A scene mesh per (glTF mesh, morph weights, skin): a node's own weights pose its own copy,
+  // and a skinned node's mesh is posed by its skin's joints.
+  using MeshKey = std::tuple<int, std::vector<float>, int>;
+  std::map<MeshKey, int> meshRemap;
+  std::vector<MeshKey> meshOrder;
+  const std::vector<glm::mat4> nodeWorld = worldTransforms(doc, parent);
   std::vector<bool> visited(doc.nodes.size(), false);
   std::vector<std::pair<int, glm::mat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
@@ -145,11 +174,10 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     const gltf::NodeDesc& node = doc.nodes[static_cast<size_t>(index)];
     const glm::mat4 world = parentWorld * node.local;
     if (node.mesh >= 0) {
-      int& m = meshRemap[static_cast<size_t>(node.mesh)];
-      if (m < 0) {
-        m = static_cast<int>(meshOrder.size());
-        meshOrder.push_back(node.mesh);
-      }
+      MeshKey key{node.mesh, node.weights.value_or(std::vector<float>{}), node.skin};
+      auto [it, added] = meshRemap.emplace(key, static_cast<int>(meshOrder.size()));
+      if (added) meshOrder.push_back(std::move(key));
+      const int m = it->second;
       if (node.instanced) {
         // EXT_mesh_gpu_instancing: one scene instance per copy (gltf_instancing.cpp).
         auto copies = gltf::instanceTransforms(doc, node, index, ctx);
@@ -158,7 +186,9 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
           scene.instances.push_back(Instance{m, world * local, node.name, !node.lightProxy});
         }
       } else {
-        scene.instances.push_back(Instance{m, world, node.name, !node.lightProxy});
+        // A skinned mesh is posed in world space by its joints (gltf_skin.cpp).
+        scene.instances.push_back(
+            Instance{m, node.skin >= 0 ? glm::mat4(1.0f) : world, node.name, !node.lightProxy});
       }
     }
     if (node.camera >= 0) gltf::addNodeCamera(doc, node, world, scene, ctx);
@@ -168,8 +198,14 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     }
   }
 
-  for (int m : meshOrder) {
-    auto mesh = gltf::convertMesh(doc, m, ctx);
+  for (const auto& [m, weights, skin] : meshOrder) {
+    std::vector<glm::mat4> joints;
+    if (skin >= 0) {
+      auto jm = gltf::jointMatrices(doc, skin, nodeWorld, ctx);
+      if (!jm.ok()) return jm.error();
+      joints = std::move(jm).value();
+    }
+    auto mesh = gltf::convertMesh(doc, m, weights, joints, ctx);
     if (!mesh.ok()) return mesh.error();
     scene.meshes.push_back(std::move(mesh).value());
   }

@@ -202,7 +202,9 @@ Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& pr
   return {};
 }
 
-Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadContext& ctx,
+Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
+                                   const std::vector<float>& weights,
+                                   const std::vector<glm::mat4>& joints, LoadContext& ctx,
                                    const std::string& what) {
   std::optional<DecodedDraco> draco;
   if (pd.draco) {
@@ -222,6 +224,8 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
 
   Primitive prim;
   PN_TRY(readAttributes(src, prim, ctx, what));
+  if (!pd.targets.empty()) PN_TRY(applyMorphTargets(doc, pd, weights, prim, ctx, what));
+  if (!joints.empty()) PN_TRY(applySkin(doc, pd, joints, prim, ctx, what));
   const size_t vertexCount = prim.positions.size();
 
   // Index sequence in the primitive's topology.
@@ -267,8 +271,10 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd, LoadC
 
 }  // namespace
 
-Result<Mesh> convertMesh(Document& doc, int meshIndex, LoadContext& ctx) {
+Result<Mesh> convertMesh(Document& doc, int meshIndex, const std::vector<float>& weights,
+                         const std::vector<glm::mat4>& joints, LoadContext& ctx) {
   const MeshDesc& md = doc.meshes[static_cast<size_t>(meshIndex)];
+  const std::vector<float>& pose = weights.empty() ? md.weights : weights;
   Mesh mesh;
   mesh.name = md.name;
   for (size_t i = 0; i < md.primitives.size(); ++i) {
@@ -280,7 +286,7 @@ Result<Mesh> convertMesh(Document& doc, int meshIndex, LoadContext& ctx) {
       ctx.warn(what + ": " + kModes[pd.mode] + " are not rendered; skipped");
       continue;
     }
-    auto prim = convertPrimitive(doc, pd, ctx, what);
+    auto prim = convertPrimitive(doc, pd, pose, joints, ctx, what);
     if (!prim.ok()) return prim.error();
     mesh.primitives.push_back(std::move(prim).value());
   }

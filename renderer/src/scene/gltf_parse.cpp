@@ -14,9 +14,26 @@
 namespace penumbra::gltf {
 namespace {
 
+// A mesh's or node's morph "weights" (finite numbers; empty when absent).
+std::vector<float> weightsOf(Parser& p, const json& o, const std::string& path) {
+  std::vector<float> w;
+  if (const json* a = p.array(o, "weights", path)) {
+    for (size_t i = 0; i < a->size(); ++i) {
+      const json& v = (*a)[i];
+      const double x = v.is_number() ? v.get<double>() : 0.0;
+      if (!v.is_number() || !std::isfinite(x)) {
+        p.fail(path + ".weights[" + std::to_string(i) + "]", "must be a number");
+      }
+      w.push_back(static_cast<float>(x));
+    }
+  }
+  return w;
+}
+
 // The sizes of the top-level arrays, which every index is checked against.
 struct Counts {
-  size_t buffers, views, accessors, meshes, nodes, materials, textures, images, samplers, cameras;
+  size_t buffers, views, accessors, meshes, nodes, materials, textures, images, samplers, cameras,
+      skins;
 };
 
 // Parses the 'buffers' array.
@@ -150,6 +167,21 @@ void parseMeshes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Lo
       prim.indices = p.index(po, "indices", pp, count.accessors, "accessors");
       prim.material = p.index(po, "material", pp, count.materials, "materials");
       prim.mode = static_cast<int>(p.integer(po, "mode", pp, 4, false, 0, 6));
+      if (const json* targets = p.array(po, "targets", pp)) {
+        for (size_t t = 0; t < targets->size() && !p.failed(); ++t) {
+          const std::string tp = pp + ".targets[" + std::to_string(t) + "]";
+          std::map<std::string, int> target;
+          if ((*targets)[t].is_object()) {
+            for (auto it = (*targets)[t].begin(); it != (*targets)[t].end(); ++it) {
+              target[it.key()] =
+                  p.checkIndex(it.value(), tp + "." + it.key(), count.accessors, "accessors");
+            }
+          } else {
+            p.fail(tp, "must be an object");
+          }
+          prim.targets.push_back(std::move(target));
+        }
+      }
       if (const json* ext = p.object(po, "extensions", pp)) {
         if (const json* d = p.object(*ext, "KHR_draco_mesh_compression", pp + ".extensions")) {
           const std::string dp = pp + ".extensions.KHR_draco_mesh_compression";
@@ -169,6 +201,7 @@ void parseMeshes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Lo
       }
       m.primitives.push_back(std::move(prim));
     }
+    m.weights = weightsOf(p, o, path);
     doc.meshes.push_back(std::move(m));
   });
 }
@@ -243,6 +276,8 @@ void parseNodes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Loa
       }
     }
     n.mesh = p.index(o, "mesh", path, count.meshes, "meshes");
+    if (o.contains("weights")) n.weights = weightsOf(p, o, path);
+    n.skin = p.index(o, "skin", path, count.skins, "skins");
     n.camera = p.index(o, "camera", path, count.cameras, "cameras");
     if (const auto e = o.find("extras"); e != o.end() && e->is_object()) {
       n.lightProxy = e->contains("area_light_proxy");
@@ -287,6 +322,21 @@ void parseNodes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Loa
       }
     }
     doc.nodes.push_back(std::move(n));
+  });
+}
+
+// Parses the 'skins' array (joints, inverseBindMatrices; the skeleton root is not needed).
+void parseSkins(Parser& p, const json& root, Document& doc, const Counts& count) {
+  forEach(p, root, "skins", [&](const json& o, const std::string& path, size_t) {
+    SkinDesc s;
+    const json* joints = p.array(o, "joints", path);
+    if (!joints) p.fail(path, "missing required 'joints'");
+    for (size_t i = 0; joints && i < joints->size(); ++i) {
+      s.joints.push_back(p.checkIndex((*joints)[i], path + ".joints[" + std::to_string(i) + "]",
+                                      count.nodes, "nodes"));
+    }
+    s.inverseBindMatrices = p.index(o, "inverseBindMatrices", path, count.accessors, "accessors");
+    doc.skins.push_back(std::move(s));
   });
 }
 
@@ -441,7 +491,8 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
                      .textures = arraySize(root, "textures"),
                      .images = arraySize(root, "images"),
                      .samplers = arraySize(root, "samplers"),
-                     .cameras = arraySize(root, "cameras")};
+                     .cameras = arraySize(root, "cameras"),
+                     .skins = arraySize(root, "skins")};
 
   parseBuffers(p, root, doc, ctx, count);
 
@@ -455,6 +506,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
   parseNodes(p, root, doc, ctx, count);
 
   parseScenes(p, root, doc, ctx, count);
+  parseSkins(p, root, doc, count);
   doc.scene = p.index(root, "scene", "glTF", doc.scenes.size(), "scenes");
 
   parseMaterials(p, root, doc, ctx, count.textures);

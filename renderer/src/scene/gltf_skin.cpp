@@ -1,0 +1,87 @@
+// Skins at rest: a still renderer shows a skinned model as its joints' node transforms pose it
+// (glTF's rest pose without animation), computed once at load. The skinned vertices land in
+// world space, so the skinned node's own transform does not apply (as glTF defines).
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "scene/gltf_document.h"
+
+namespace penumbra::gltf {
+
+Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
+                                             const std::vector<glm::mat4>& nodeWorld,
+                                             LoadContext& ctx) {
+  const SkinDesc& s = doc.skins[static_cast<size_t>(skin)];
+  const std::string where = "skins[" + std::to_string(skin) + "]";
+  std::vector<float> ibm;
+  if (s.inverseBindMatrices >= 0) {
+    const AccessorDesc& a = doc.accessors[static_cast<size_t>(s.inverseBindMatrices)];
+    if (a.components != 16 || a.count < s.joints.size()) {
+      return ctx.error(where + ".inverseBindMatrices: accessor " +
+                       std::to_string(s.inverseBindMatrices) + " is " + std::to_string(a.count) +
+                       " " + a.type + "; expected a MAT4 per joint (" +
+                       std::to_string(s.joints.size()) + ")");
+    }
+    auto m = readFloats(doc, s.inverseBindMatrices, ctx, where + " inverseBindMatrices");
+    if (!m.ok()) return m.error();
+    ibm = std::move(m).value();
+  }
+  std::vector<glm::mat4> out(s.joints.size(), glm::mat4(1.0f));
+  for (size_t j = 0; j < s.joints.size(); ++j) {
+    glm::mat4 inverseBind(1.0f);
+    if (!ibm.empty()) {
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r)
+          inverseBind[c][r] = ibm[16 * j + 4 * static_cast<size_t>(c) + static_cast<size_t>(r)];
+      }
+    }
+    out[j] = nodeWorld[static_cast<size_t>(s.joints[j])] * inverseBind;
+  }
+  return out;
+}
+
+Status applySkin(Document& doc, const PrimitiveDesc& pd, const std::vector<glm::mat4>& joints,
+                 Primitive& prim, LoadContext& ctx, const std::string& what) {
+  const auto j = pd.attributes.find("JOINTS_0"), w = pd.attributes.find("WEIGHTS_0");
+  if (j == pd.attributes.end() || w == pd.attributes.end()) return {};  // not skinned itself
+  const size_t n = prim.positions.size();
+  for (const auto& [name, accessor] : {*j, *w}) {
+    const AccessorDesc& a = doc.accessors[static_cast<size_t>(accessor)];
+    if (a.components != 4 || a.count != n) {
+      return ctx.error(what + " " + name + ": accessor " + std::to_string(accessor) + " is " +
+                       std::to_string(a.count) + " " + a.type + "; expected a VEC4 per vertex (" +
+                       std::to_string(n) + ")");
+    }
+  }
+  auto ji = readFloats(doc, j->second, ctx, what + " JOINTS_0");
+  if (!ji.ok()) return ji.error();
+  auto wi = readFloats(doc, w->second, ctx, what + " WEIGHTS_0");
+  if (!wi.ok()) return wi.error();
+  for (size_t v = 0; v < n; ++v) {
+    glm::mat4 m(0.0f);
+    for (size_t k = 0; k < 4; ++k) {
+      const float weight = (*wi)[4 * v + k];
+      if (weight == 0.0f) continue;
+      const auto joint = static_cast<size_t>((*ji)[4 * v + k]);
+      if (joint >= joints.size()) {
+        return ctx.error(what + " JOINTS_0: vertex " + std::to_string(v) + " names joint " +
+                         std::to_string(joint) + " of a skin with " +
+                         std::to_string(joints.size()));
+      }
+      m += weight * joints[joint];
+    }
+    prim.positions[v] = glm::vec3(m * glm::vec4(prim.positions[v], 1.0f));
+    const glm::mat3 linear(m);
+    if (!prim.normals.empty()) {
+      const glm::vec3 nrm = glm::inverseTranspose(linear) * prim.normals[v];
+      prim.normals[v] = glm::length(nrm) > 0.0f ? glm::normalize(nrm) : prim.normals[v];
+    }
+    if (!prim.tangents.empty()) {
+      const glm::vec3 t = linear * glm::vec3(prim.tangents[v]);
+      if (glm::length(t) > 0.0f)
+        prim.tangents[v] = glm::vec4(glm::normalize(t), prim.tangents[v].w);
+    }
+  }
+  return {};
+}
+
+}  // namespace penumbra::gltf
