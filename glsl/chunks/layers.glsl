@@ -64,26 +64,29 @@ Layers surfaceLayers(SurfaceInputs s, vec3 v) {
   // KHR_materials_clearcoat: a GGX layer with F0 0.04 over the base, on its own normal (its
   // normal map, else the geometric normal). The base below gets what the coat lets through,
   // 1 - coat F(n.v), as the extension defines.
+  // (Each factor function samples its textures: called once.)
+  vec2 coatFactors = PN_CLEARCOAT == 0 ? vec2(0.0, 1.0) : clearcoatFactors();
 #if PN_CAPTURE
   L.coat = 0.0;
 #else
-  L.coat = PN_CLEARCOAT == 0 ? 0.0 : clearcoatFactors().x;
+  L.coat = coatFactors.x;
 #endif
   L.coatN = PN_CLEARCOAT == 0 ? L.n : clearcoatNormal();
   L.coatNoV = max(dot(L.coatN, v), 1e-4);
   L.coatRoughness =
-      PN_CLEARCOAT == 0 ? 1.0 : clamp(clearcoatFactors().y, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+      PN_CLEARCOAT == 0 ? 1.0 : clamp(coatFactors.y, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   L.coatAlpha = L.coatRoughness * L.coatRoughness;
   L.baseScale = PN_CLEARCOAT == 0 ? 1.0 : 1.0 - L.coat * F_Schlick(vec3(0.04), L.coatNoV).x;
 
   // KHR_materials_sheen: a Charlie lobe over the base, which receives what the sheen does not
   // reflect (glTF's albedo scaling, 1 - max(sheenColor) E(n.v)). Under the coat, like the base.
+  vec4 sheen = PN_SHEEN == 0 ? vec4(0.0) : sheenFactors();
 #if PN_CAPTURE
   L.sheenColor = vec3(0.0);
 #else
-  L.sheenColor = PN_SHEEN == 0 ? vec3(0.0) : sheenFactors().rgb;
+  L.sheenColor = sheen.rgb;
 #endif
-  float sheenRoughness = PN_SHEEN == 0 ? 0.0 : sheenFactors().a;
+  float sheenRoughness = sheen.a;
   L.sheenMax = max(L.sheenColor.r, max(L.sheenColor.g, L.sheenColor.b));
   L.sheenA = sheenAlpha(sheenRoughness);
   L.sheenE = L.sheenMax > 0.0 ? sheenAlbedo(L.NoV, sheenRoughness) : 0.0;

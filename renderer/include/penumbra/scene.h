@@ -33,6 +33,16 @@ struct Bounds {
     }
   }
   glm::vec3 center() const { return (min + max) * 0.5f; }
+  // The box around these bounds' eight corners under m (invalid stays invalid).
+  Bounds transformed(const glm::mat4& m) const {
+    Bounds b;
+    if (!valid()) return b;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 p((c & 1) ? max.x : min.x, (c & 2) ? max.y : min.y, (c & 4) ? max.z : min.z);
+      b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+    }
+    return b;
+  }
   float radius() const { return glm::length(max - min) * 0.5f; }
 };
 
@@ -142,6 +152,12 @@ struct Material {
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;
+  // Whether it emits light (emissiveFactor times emissive_strength above 0).
+  bool emits() const {
+    return glm::max(emissiveFactor.r, glm::max(emissiveFactor.g, emissiveFactor.b)) *
+               emissiveStrength >
+           0.0f;
+  }
   // The texture of a slot (one of the fields above).
   TextureRef& texture(TextureSlot slot);
   const TextureRef& texture(TextureSlot slot) const;

@@ -103,22 +103,10 @@ void GpuScene::buildDrawItems(const Scene& scene) {
       item.model = inst.world;
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
-      const Material* pm = p->material >= 0 && p->material < defaultMaterial
-                               ? &scene.materials[static_cast<size_t>(p->material)]
-                               : nullptr;
-      const bool glows = pm && glm::max(pm->emissiveFactor.r,
-                                        glm::max(pm->emissiveFactor.g, pm->emissiveFactor.b)) *
-                                       pm->emissiveStrength >
-                                   0.0f;
-      item.castsShadow = inst.castsShadow && !(inst.lampFace && glows);
-      Bounds wb;
-      if (p->bounds.valid()) {
-        for (int c = 0; c < 8; ++c) {
-          glm::vec3 corner((c & 1) ? p->bounds.max.x : p->bounds.min.x,
-                           (c & 2) ? p->bounds.max.y : p->bounds.min.y,
-                           (c & 4) ? p->bounds.max.z : p->bounds.min.z);
-          wb.extend(glm::vec3(inst.world * glm::vec4(corner, 1.0f)));
-        }
+      const Material& pm = materials_[static_cast<size_t>(item.material)].source;
+      item.castsShadow = inst.castsShadow && !(inst.lampFace && pm.emits());
+      const Bounds wb = p->bounds.transformed(inst.world);
+      if (wb.valid()) {
         bounds_.extend(wb);
         item.center = wb.center();
       }

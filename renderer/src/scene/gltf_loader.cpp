@@ -114,16 +114,6 @@ std::vector<glm::mat4> worldTransforms(const Document& doc, const std::vector<in
   return world;
 }
 
-void extendBounds(Bounds& b, const Bounds& local, const glm::mat4& m) {
-  if (!local.valid()) return;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
-                      (corner & 2) ? local.max.y : local.min.y,
-                      (corner & 4) ? local.max.z : local.min.z);
-    b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
-  }
-}
-
 Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
                    const std::string& name, const LoadOptions& options) {
   LoadContext ctx;
@@ -213,7 +203,7 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
 
   for (const Instance& inst : scene.instances) {
     for (const Primitive& p : scene.meshes[static_cast<size_t>(inst.mesh)].primitives) {
-      extendBounds(scene.bounds, p.bounds, inst.world);
+      scene.bounds.extend(p.bounds.transformed(inst.world));
     }
   }
   gltf::markLampFaces(scene, ctx);

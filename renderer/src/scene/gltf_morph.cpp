@@ -40,8 +40,7 @@ Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vect
       }
     }
   }
-  // Morphed normals and tangents are no longer unit length (they are renormalised where the
-  // loader finishes the primitive's shading attributes).
+  // Morphed normals are no longer unit length (tangents are normalised in the shader).
   for (glm::vec3& nrm : prim.normals) {
     const float len = glm::length(nrm);
     if (len > 0.0f) nrm /= len;

@@ -2,6 +2,7 @@
 // (glTF's rest pose without animation), computed once at load. The skinned vertices land in
 // world space, so the skinned node's own transform does not apply (as glTF defines).
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "scene/gltf_document.h"
 
@@ -27,13 +28,7 @@ Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
   }
   std::vector<glm::mat4> out(s.joints.size(), glm::mat4(1.0f));
   for (size_t j = 0; j < s.joints.size(); ++j) {
-    glm::mat4 inverseBind(1.0f);
-    if (!ibm.empty()) {
-      for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r)
-          inverseBind[c][r] = ibm[16 * j + 4 * static_cast<size_t>(c) + static_cast<size_t>(r)];
-      }
-    }
+    const glm::mat4 inverseBind = ibm.empty() ? glm::mat4(1.0f) : glm::make_mat4(&ibm[16 * j]);
     out[j] = nodeWorld[static_cast<size_t>(s.joints[j])] * inverseBind;
   }
   return out;

@@ -11,23 +11,6 @@
 namespace penumbra::gltf {
 namespace {
 
-bool emissive(const Material& m) {
-  const glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
-  return std::max({e.r, e.g, e.b}) > 0.0f;
-}
-
-Bounds worldBounds(const Bounds& local, const glm::mat4& m) {
-  Bounds b;
-  if (!local.valid()) return b;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
-                      (corner & 2) ? local.max.y : local.min.y,
-                      (corner & 4) ? local.max.z : local.min.z);
-    b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
-  }
-  return b;
-}
-
 float diagonal(const Bounds& b) {
   return b.valid() ? glm::length(b.max - b.min) : 0.0f;
 }
@@ -40,8 +23,8 @@ void markLampFaces(Scene& scene, LoadContext& ctx) {
     Bounds glow;                                       // the instance's emissive primitives
     for (const Primitive& p : scene.meshes[static_cast<size_t>(inst.mesh)].primitives) {
       if (p.material >= 0 && p.material < static_cast<int>(scene.materials.size()) &&
-          emissive(scene.materials[static_cast<size_t>(p.material)])) {
-        glow.extend(worldBounds(p.bounds, inst.world));
+          scene.materials[static_cast<size_t>(p.material)].emits()) {
+        glow.extend(p.bounds.transformed(inst.world));
       }
     }
     if (!glow.valid()) continue;
