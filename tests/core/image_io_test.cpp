@@ -18,13 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string freshDir(const std::string& name) {
-  const std::string dir = test::outputDir() + "/image_io/" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 std::vector<std::string> listDir(const std::string& dir) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
@@ -54,7 +47,7 @@ TEST(ImageIoTest, SrgbCurvesAreInverse) {
 }
 
 TEST(ImageIoTest, PngRoundTrip) {
-  const std::string dir = freshDir("png");
+  const std::string dir = test::freshOutputDir("image_io/png");
   const Image image = gradient(17, 9, 4, 1.0f);
   ASSERT_TRUE(writeImage(dir + "/a.png", image).ok());
   auto raw = readImage(dir + "/a.png", {.srgbToLinear = false});
@@ -76,7 +69,7 @@ TEST(ImageIoTest, PngRoundTrip) {
 }
 
 TEST(ImageIoTest, ExrRoundTripIsHalfPrecision) {
-  const std::string dir = freshDir("exr");
+  const std::string dir = test::freshOutputDir("image_io/exr");
   Image image = gradient(12, 6, 3, 1000.0f);
   image.pixel(0, 0)[0] = 1e-3f;
   ASSERT_TRUE(writeImage(dir + "/a.exr", image).ok());
@@ -89,7 +82,7 @@ TEST(ImageIoTest, ExrRoundTripIsHalfPrecision) {
 }
 
 TEST(ImageIoTest, HdrRoundTripAndReaderAgreement) {
-  const std::string dir = freshDir("hdr");
+  const std::string dir = test::freshOutputDir("image_io/hdr");
   Image image = gradient(40, 5, 3, 50.0f);
   image.pixel(3, 2)[1] = 1e5f;
   ASSERT_TRUE(writeImage(dir + "/a.hdr", image).ok());
@@ -132,7 +125,7 @@ TEST(ImageIoTest, ReadFromMemory) {
 }
 
 TEST(ImageIoTest, ErrorsAreOneLineAndNameTheFile) {
-  const std::string dir = freshDir("errors");
+  const std::string dir = test::freshOutputDir("image_io/errors");
   auto missing = readImage(dir + "/nope.exr");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.message(), "cannot read '" + dir + "/nope.exr': no such file");
@@ -162,7 +155,7 @@ TEST(ImageIoTest, ErrorsAreOneLineAndNameTheFile) {
 }
 
 TEST(ImageIoTest, AtomicWriteLeavesNoTemporaryOnFailure) {
-  const std::string dir = freshDir("atomic");
+  const std::string dir = test::freshOutputDir("image_io/atomic");
   const std::string target = dir + "/out.hdr";
   ASSERT_TRUE(detail::writeFileAtomic(target, std::vector<uint8_t>{1, 2, 3}).ok());
   // A writer that fails half-way: the previous file stays, no temporary remains.

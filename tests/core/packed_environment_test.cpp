@@ -37,13 +37,6 @@ PackedEnvironment randomEnvironment(int size, int mips, unsigned seed) {
   return env;
 }
 
-std::string freshDir(const std::string& name) {
-  const std::string dir = test::outputDir() + "/packed/" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 TEST(PackedEnvironmentTest, BitExactRoundTrip) {
   const PackedEnvironment env = randomEnvironment(16, 5, 1);
   auto first = encodePackedEnvironment(env);
@@ -112,7 +105,7 @@ TEST(PackedEnvironmentTest, LayoutMatchesDocumentation) {
 }
 
 TEST(PackedEnvironmentTest, ManifestEmbeddedAndBeside) {
-  const std::string dir = freshDir("manifest");
+  const std::string dir = test::freshOutputDir("packed/manifest");
   const PackedEnvironment env = randomEnvironment(32, 4, 3);
   ASSERT_TRUE(writePackedEnvironment(dir + "/env.hdr", env).ok());
   std::vector<std::string> names;
@@ -181,7 +174,7 @@ TEST(PackedEnvironmentTest, ManifestLinesOfAnyLengthStayReadable) {
 }
 
 TEST(PackedEnvironmentTest, RejectsOtherFiles) {
-  const std::string dir = freshDir("reject");
+  const std::string dir = test::freshOutputDir("packed/reject");
   auto missing = readPackedEnvironment(dir + "/missing.hdr");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.message().find("no such file"), std::string::npos);

@@ -13,7 +13,7 @@ namespace {
 
 class ExtensionTexturesGLTest : public GlFixture {};
 
-constexpr int kSize = 48;
+constexpr int kTexturesSize = 48;
 
 // One image of w x h texels, all `texel`.
 ImageData solid(int w, int h, std::array<uint8_t, 4> texel) {
@@ -36,7 +36,7 @@ glm::vec3 render(const Material& material, const std::vector<ImageData>& images,
   s.meshes.push_back(sphereMesh({0, 0, 0}, 1.0f, 0, 96));
   finishScene(s);
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kTexturesSize;
   rs.progressive.frames = 8;
   auto img = renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)),
                             lookAtCamera({0, 0, 4}, {0, 0, 0}, 25.0f), rs);

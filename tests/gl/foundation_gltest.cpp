@@ -14,7 +14,7 @@
 namespace penumbra::test {
 namespace {
 
-constexpr int kSize = 8;
+constexpr int kFoundationSize = 8;
 // A triangle in NDC chosen so no pixel centre of the 8x8 target lies on an edge for any of
 // the jitters below (checked by the CPU reference, which would otherwise be ambiguous).
 constexpr std::array<float, 6> kTriangle = {-0.93f, -0.81f, 0.87f, -0.66f, -0.21f, 0.91f};
@@ -38,7 +38,7 @@ std::array<std::array<float, 2>, 16> jitters() {
 
 // CPU coverage of a pixel centre by the jittered triangle (edge functions).
 bool covered(float px, float py, float jx, float jy) {
-  auto toPix = [](float ndc) { return (ndc * 0.5f + 0.5f) * kSize; };
+  auto toPix = [](float ndc) { return (ndc * 0.5f + 0.5f) * kFoundationSize; };
   float x[3], y[3];
   for (int i = 0; i < 3; ++i) {
     x[i] = toPix(kTriangle[2 * i]) + jx;
@@ -57,7 +57,8 @@ struct Target {
 };
 
 Target makeTarget(gl::PixelFormat format) {
-  auto tex = gl::Texture2D::create({.width = kSize, .height = kSize, .format = format});
+  auto tex = gl::Texture2D::create(
+      {.width = kFoundationSize, .height = kFoundationSize, .format = format});
   EXPECT_TRUE(tex.ok()) << (tex.ok() ? "" : tex.message());
   Target t{std::move(*tex), gl::Framebuffer::create()};
   t.framebuffer.attachColor(0, t.texture);
@@ -77,7 +78,7 @@ std::vector<float> renderAccumulated(gl::ShaderLibrary& library, gl::PixelFormat
   vao.setAttribute(0, *vbo, 2, gl::AttribType::Float, false, 0, 0);
 
   target.framebuffer.bind();
-  gl::setViewport(0, 0, kSize, kSize);
+  gl::setViewport(0, 0, kFoundationSize, kFoundationSize);
   gl::clearBufferFloat(0, 0, 0, 0, 0);
   gl::apply({.depthTest = gl::DepthTest::Off,
              .depthWrite = false,
@@ -86,12 +87,12 @@ std::vector<float> renderAccumulated(gl::ShaderLibrary& library, gl::PixelFormat
   (*program)->use();
   const auto js = jitters();
   for (int k = 0; k < 16; ++k) {
-    (*program)->set("uJitter", glm::vec2(js[k][0], js[k][1]) * (2.0f / kSize));
+    (*program)->set("uJitter", glm::vec2(js[k][0], js[k][1]) * (2.0f / kFoundationSize));
     (*program)->set("uColor", glm::vec4((k + 1) / 16.0f, 1.0f / 16.0f, 0.5f, 1.0f));
     vao.draw(gl::Primitive::Triangles, 3);
   }
   EXPECT_TRUE(gl::checkError("accumulating").ok());
-  return target.framebuffer.readRgbaFloat(0, 0, 0, kSize, kSize);
+  return target.framebuffer.readRgbaFloat(0, 0, 0, kFoundationSize, kFoundationSize);
 }
 
 class FoundationGLTest : public GlFixture {};
@@ -117,8 +118,8 @@ TEST_F(FoundationGLTest, AccumulatesJitteredFramesInFloatTargetLikeTheCpu) {
   std::vector<float> gpu = renderAccumulated(library, gl::PixelFormat::RGBA32F);
   const auto js = jitters();
   int partial = 0;
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kFoundationSize; ++y) {
+    for (int x = 0; x < kFoundationSize; ++x) {
       float expected[4] = {0, 0, 0, 0};
       int hits = 0;
       for (int k = 0; k < 16; ++k) {
@@ -131,7 +132,7 @@ TEST_F(FoundationGLTest, AccumulatesJitteredFramesInFloatTargetLikeTheCpu) {
       }
       if (hits > 0 && hits < 16) ++partial;
       for (int c = 0; c < 4; ++c) {
-        EXPECT_NEAR(gpu[(y * kSize + x) * 4 + c], expected[c], 1e-5f)
+        EXPECT_NEAR(gpu[(y * kFoundationSize + x) * 4 + c], expected[c], 1e-5f)
             << "pixel " << x << "," << y << " channel " << c;
       }
     }

@@ -12,7 +12,7 @@ namespace {
 
 class MaterialExtensionsGLTest : public GlFixture {};
 
-constexpr int kSize = 48;
+constexpr int kExtensionsSize = 48;
 
 // A unit sphere seen from 4 units away with the given vertical field of view, 8 frames.
 Result<Image> renderSphere(const Material& material, glm::vec3 sky, float fovDeg,
@@ -23,7 +23,7 @@ Result<Image> renderSphere(const Material& material, glm::vec3 sky, float fovDeg
   s.lights = lights;
   finishScene(s);
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kExtensionsSize;
   rs.progressive.frames = 8;
   auto img =
       renderRadiance(s, uniformEnvironment(sky), lookAtCamera({0, 0, 4}, {0, 0, 0}, fovDeg), rs);
@@ -128,7 +128,7 @@ TEST_F(MaterialExtensionsGLTest, ClearcoatNormalMapTiltsOnlyTheCoat) {
     }
     finishScene(s);
     RenderSettings rs;
-    rs.width = rs.height = kSize;
+    rs.width = rs.height = kExtensionsSize;
     rs.progressive.frames = 8;
     auto img = renderRadiance(s, uniformEnvironment(glm::vec3(1.0f)),
                               lookAtCamera({0, 0, 4}, {0, 0, 0}, 20.0f), rs);
@@ -163,11 +163,13 @@ CentreAndRim sphereCentreAndRim(const Material& material, glm::vec3 sky,
   CentreAndRim out;
   if (!img.ok()) return out;
   // The sphere's radius on screen: tan(asin(1/4)) / tan(20 deg) of the half width.
-  const float radius = std::tan(std::asin(0.25f)) / std::tan(glm::radians(20.0f)) * kSize * 0.5f;
+  const float radius =
+      std::tan(std::asin(0.25f)) / std::tan(glm::radians(20.0f)) * kExtensionsSize * 0.5f;
   int nc = 0, nr = 0;
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
-      const float d = std::hypot(x + 0.5f - kSize * 0.5f, y + 0.5f - kSize * 0.5f);
+  for (int y = 0; y < kExtensionsSize; ++y) {
+    for (int x = 0; x < kExtensionsSize; ++x) {
+      const float d =
+          std::hypot(x + 0.5f - kExtensionsSize * 0.5f, y + 0.5f - kExtensionsSize * 0.5f);
       const glm::vec3 c(img->pixel(x, y)[0], img->pixel(x, y)[1], img->pixel(x, y)[2]);
       if (d < 6.0f) out.centre += c, ++nc;
       if (d > radius - 3.0f && d < radius - 1.5f) out.rim += c, ++nr;

@@ -13,7 +13,7 @@ namespace {
 
 class PunctualShadowGLTest : public GlFixture {};
 
-constexpr int kSize = 96;
+constexpr int kPunctualSize = 96;
 
 struct Render {
   Image image;
@@ -32,15 +32,15 @@ Render renderWith(const Light& light, bool boxCastsShadow = true) {
   s.lights.push_back(light);
   const Camera cam = lookAtCamera({0.0f, 7.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 40.0f);
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kPunctualSize;
   rs.progressive.frames = 16;
   rs.progressive.directDelay = 0.0f;
   rs.progressive.shadowMapSize = 512;
   rs.progressive.screenSpaceIndirect = false;
   auto img = renderRadiance(s, uniformEnvironment(glm::vec3(0.0f)), cam, rs);
   EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
-  return {img.ok() ? std::move(*img) : Image(kSize, kSize, 4),
-          cameraMatrices(cam, kSize, kSize, {0, 0})};
+  return {img.ok() ? std::move(*img) : Image(kPunctualSize, kPunctualSize, 4),
+          cameraMatrices(cam, kPunctualSize, kPunctualSize, {0, 0})};
 }
 
 // Light travelling along +x and down at 45 degrees: the unit-high box's shadow covers the floor
@@ -113,14 +113,14 @@ TEST_F(PunctualShadowGLTest, PointLightShadowsGoEveryWay) {
   s.lights.push_back(bulb);
   const Camera cam = lookAtCamera({0.0f, 9.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 60.0f);
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kPunctualSize;
   rs.progressive.frames = 8;
   rs.progressive.directDelay = 0.0f;
   rs.progressive.shadowMapSize = 512;
   rs.progressive.screenSpaceIndirect = false;
   auto img = renderRadiance(s, uniformEnvironment(glm::vec3(0.0f)), cam, rs);
   ASSERT_TRUE(img.ok()) << img.message();
-  const Render r{std::move(*img), cameraMatrices(cam, kSize, kSize, {0, 0})};
+  const Render r{std::move(*img), cameraMatrices(cam, kPunctualSize, kPunctualSize, {0, 0})};
   (void)writeImage(outputDir() + "/punctual_point_all_ways.png", r.image);  // to look at
   // Lit reference at the same distance from the bulb as the shadow points (3 units out).
   const float lit = r.at({2.12f, 0.0f, -2.12f});

@@ -16,13 +16,11 @@ namespace {
 
 class SkyShadowGLTest : public GlFixture {};
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Form factor from a point to a parallel rectangle with a corner straight above it, sides X
 // and Y in units of the height (the standard closed form).
 double cornerFormFactor(double x, double y) {
   const double a = std::sqrt(1.0 + x * x), b = std::sqrt(1.0 + y * y);
-  return (x / a * std::atan(y / a) + y / b * std::atan(x / b)) / (2.0 * kPi);
+  return (x / a * std::atan(y / a) + y / b * std::atan(x / b)) / (2.0 * glm::pi<double>());
 }
 
 float floorUnderPlate(bool skyShadows, int frames) {

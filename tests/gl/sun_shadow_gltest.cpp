@@ -17,8 +17,7 @@ namespace {
 
 class SunShadowGLTest : public GlFixture {};
 
-constexpr int kSize = 192;
-constexpr double kPi = 3.14159265358979323846;
+constexpr int kSunSize = 192;
 
 // Black panorama with a disk of radiance L and angular radius r around `dir`, antialiased.
 Image sunPanorama(const glm::vec3& dir, double radius, float radiance) {
@@ -67,7 +66,7 @@ Render renderPlate(const PackedEnvironment& env, float rotation = 0.0f) {
   finishScene(s);
   const Camera cam = lookAtCamera({2.6f, 3.0f, 0.01f}, {1.0f, 0.0f, 0.0f}, 12.0f);
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kSunSize;
   rs.progressive.frames = 128;
   rs.progressive.directDelay = 0.0f;
   rs.progressive.shadowMapSize = 2048;
@@ -76,14 +75,14 @@ Render renderPlate(const PackedEnvironment& env, float rotation = 0.0f) {
   rs.showBackground = false;
   auto img = renderRadiance(s, env, cam, rs);
   EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
-  return {img.ok() ? std::move(*img) : Image(kSize, kSize, 4),
-          cameraMatrices(cam, kSize, kSize, {0, 0})};
+  return {img.ok() ? std::move(*img) : Image(kSunSize, kSunSize, 4),
+          cameraMatrices(cam, kSunSize, kSunSize, {0, 0})};
 }
 
 // Visible fraction of a uniform disk of (projected) radius R cut by an edge at offset s.
 double diskFraction(double s) {
   s = std::clamp(s, -1.0, 1.0);
-  return 1.0 - (std::acos(s) - s * std::sqrt(1.0 - s * s)) / kPi;
+  return 1.0 - (std::acos(s) - s * std::sqrt(1.0 - s * s)) / glm::pi<double>();
 }
 
 // Offset (in units of R) where the fraction reaches f.
@@ -97,7 +96,7 @@ double diskOffset(double f) {
 }
 
 TEST_F(SunShadowGLTest, PenumbraWidthFollowsTheSunsSize) {
-  const double radius = 3.0 * kPi / 180.0;
+  const double radius = 3.0 * glm::pi<double>() / 180.0;
   const PackedEnvironment env = sunEnvironment({0.0f, 1.0f, 0.0f}, radius);
   ASSERT_TRUE(env.sun.has_value());
   const Render r = renderPlate(env);
@@ -133,7 +132,7 @@ TEST_F(SunShadowGLTest, TheSunTurnsWithTheEnvironment) {
   // A sun 45 degrees from the zenith towards -x shades the floor beyond the plate's edge (the
   // shadow falls towards +x); turned by 180 degrees it shines from +x and the floor there is lit.
   const glm::vec3 dir = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.0f));
-  const PackedEnvironment env = sunEnvironment(dir, 1.0 * kPi / 180.0);
+  const PackedEnvironment env = sunEnvironment(dir, 1.0 * glm::pi<double>() / 180.0);
   const Render a = renderPlate(env, 0.0f), b = renderPlate(env, 180.0f);
   const glm::vec3 p(1.5f, 0.0f, 0.0f);  // half a unit past the edge
   EXPECT_LT(a.at(p), 0.1f * b.at(p));

@@ -15,7 +15,7 @@ namespace {
 
 class TransmissionGLTest : public GlFixture {};
 
-constexpr int kSize = 48;
+constexpr int kTransmissionSize = 48;
 
 // A clear surface: white, no reflection (ior 1: F0 = 0), everything transmitted.
 Material clearGlass() {
@@ -43,7 +43,7 @@ Mesh paneMesh(float size, float z, int material) {
 
 RenderSettings settings(int frames) {
   RenderSettings rs;
-  rs.width = rs.height = kSize;
+  rs.width = rs.height = kTransmissionSize;
   rs.progressive.frames = frames;
   rs.progressive.probeVolume = false;  // the transmitted light alone
   return rs;
@@ -52,8 +52,8 @@ RenderSettings settings(int frames) {
 // Mean RGB over the image's central square of side 2r.
 glm::vec3 centre(const Image& img, int r) {
   glm::vec3 sum(0.0f);
-  for (int y = kSize / 2 - r; y < kSize / 2 + r; ++y) {
-    for (int x = kSize / 2 - r; x < kSize / 2 + r; ++x)
+  for (int y = kTransmissionSize / 2 - r; y < kTransmissionSize / 2 + r; ++y) {
+    for (int x = kTransmissionSize / 2 - r; x < kTransmissionSize / 2 + r; ++x)
       sum += glm::vec3(img.pixel(x, y)[0], img.pixel(x, y)[1], img.pixel(x, y)[2]);
   }
   return sum / float(4 * r * r);
@@ -185,8 +185,8 @@ int edgeWidth(float roughness) {
   EXPECT_TRUE(img.ok()) << (img.ok() ? "" : img.message());
   if (!img.ok()) return -1;
   int n = 0;
-  for (int x = 0; x < kSize; ++x) {
-    const float v = img->pixel(x, kSize / 2)[0];
+  for (int x = 0; x < kTransmissionSize; ++x) {
+    const float v = img->pixel(x, kTransmissionSize / 2)[0];
     if (v > 0.1f && v < 0.9f) ++n;
   }
   return n;

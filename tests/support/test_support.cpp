@@ -18,6 +18,13 @@ std::string outputDir() {
   return dir;
 }
 
+std::string freshOutputDir(const std::string& relative) {
+  const std::string dir = outputDir() + "/" + relative;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 ::testing::AssertionResult matchesGolden(const Image& actual, const std::string& goldenPath,
                                          Tolerance tolerance, const std::string& name) {
   const char* update = std::getenv("PENUMBRA_UPDATE_GOLDEN");

@@ -14,6 +14,8 @@ namespace penumbra::test {
 std::string sourceDir();
 // A folder for files the tests write (PENUMBRA_TEST_OUTPUT), created on demand.
 std::string outputDir();
+// outputDir()/relative, emptied (or created) for one test's files.
+std::string freshOutputDir(const std::string& relative);
 
 struct Tolerance {
   double maxAbs;   // largest allowed per-channel difference

@@ -24,7 +24,7 @@ void expectMatNear(const glm::mat4& a, const glm::mat4& b, float eps = 1e-5f) {
   }
 }
 
-GltfBuilder triangle() {
+GltfBuilder indexedTriangle() {
   GltfBuilder b;
   const int pos = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const int idx = b.indices16({0, 1, 2});
@@ -36,7 +36,7 @@ GltfBuilder triangle() {
 TEST(SceneGltf, LoadsGltfWithDataUriAndGlb) {
   for (bool binary : {false, true}) {
     SCOPED_TRACE(binary ? "glb" : "gltf");
-    auto scene = triangle().load(binary);
+    auto scene = indexedTriangle().load(binary);
     ASSERT_TRUE(scene.ok()) << scene.message();
     ASSERT_EQ(scene->meshes.size(), 1u);
     ASSERT_EQ(scene->instances.size(), 1u);
@@ -52,7 +52,7 @@ TEST(SceneGltf, LoadsGltfWithDataUriAndGlb) {
 }
 
 TEST(SceneGltf, LoadsExternalBinWithPercentEncodedUri) {
-  GltfBuilder b = triangle();
+  GltfBuilder b = indexedTriangle();
   b.autoBuffer = false;
   b.doc["buffers"] = json::array({{{"byteLength", b.bin.size()}, {"uri", "tri%20data.bin"}}});
   const std::string dir = outputDir() + "/scene_external_bin";
@@ -66,7 +66,7 @@ TEST(SceneGltf, LoadsExternalBinWithPercentEncodedUri) {
   EXPECT_EQ(scene->triangleCount(), 1u);
 
   // A .glb file on disk loads through the same path.
-  const auto glb = triangle().glb();
+  const auto glb = indexedTriangle().glb();
   std::ofstream(dir + "/tri.glb", std::ios::binary)
       .write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
   auto fromGlb = loadGltf(dir + "/tri.glb");
