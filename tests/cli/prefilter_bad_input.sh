@@ -118,7 +118,7 @@ if ! "$TOOL" "$WORK/pano.pfm" -o "$OUT" --size 16 --samples 16 --lut-size 16 --f
   cat "$WORK/err.txt" >&2
   failures=$((failures + 1))
 else
-  expected=(environment.hdr environment.json brdf_lut.exr brdf_lut.png sh.json
+  expected=(environment.hdr environment.json environment.ktx2 brdf_lut.exr brdf_lut.png sh.json
             preview/mip0.png preview/mip1.png preview/mip2.png)
   for m in 0 1 2; do
     for f in px nx py ny pz nz; do
@@ -164,6 +164,39 @@ else
   echo "FAIL [gpu-run]: $(cat "$WORK/gpu.txt")" >&2
   failures=$((failures + 1))
 fi
+
+# KTX2 for other engines beside the packed file (one prefilter), and several panoramas per call,
+# each into a folder named after it; one bad panorama fails alone.
+if "$TOOL" "$WORK/pano.pfm" -o "$WORK/ktx" --size 16 --samples 8 --format packed,ktx2 -q 2>"$WORK/err.txt" &&
+   [ -s "$WORK/ktx/environment.hdr" ] && [ -s "$WORK/ktx/environment.ktx2" ] &&
+   [ "$(head -c 12 "$WORK/ktx/environment.ktx2" | od -An -tx1 | tr -d ' \n')" = "ab4b5458203230bb0d0a1a0a" ]; then
+  echo "ok   [ktx2]"
+else
+  echo "FAIL [ktx2]: $(cat "$WORK/err.txt"; ls "$WORK/ktx" 2>&1)" >&2
+  failures=$((failures + 1))
+fi
+cp "$WORK/pano.pfm" "$WORK/second.pfm"
+if "$TOOL" "$WORK/pano.pfm" "$WORK/second.pfm" -o "$WORK/many" --size 8 --samples 8 -q 2>"$WORK/err.txt" &&
+   [ -s "$WORK/many/pano/environment.hdr" ] && [ -s "$WORK/many/second/environment.hdr" ] &&
+   cmp -s "$WORK/many/pano/environment.hdr" "$WORK/many/second/environment.hdr"; then
+  echo "ok   [several-inputs]"
+else
+  echo "FAIL [several-inputs]: $(cat "$WORK/err.txt"; find "$WORK/many" -type f)" >&2
+  failures=$((failures + 1))
+fi
+status=0
+"$TOOL" "$WORK/wide.pfm" "$WORK/second.pfm" -o "$WORK/partly" --size 8 --samples 8 -q 2>"$WORK/err.txt" || status=$?
+if [ "$status" -ne 0 ] && [ -s "$WORK/partly/second/environment.hdr" ] &&
+   grep -q "wide.pfm: expected a 2:1 equirectangular panorama" "$WORK/err.txt" &&
+   grep -q "1 of 2 panoramas failed" "$WORK/err.txt"; then
+  echo "ok   [one-bad-input-of-two]"
+else
+  echo "FAIL [one-bad-input-of-two]: exit $status, $(cat "$WORK/err.txt")" >&2
+  failures=$((failures + 1))
+fi
+mkdir -p "$WORK/other"
+cp "$WORK/pano.pfm" "$WORK/other/pano.pfm"
+expect_fail same-names "share the output folder" "$WORK/pano.pfm" "$WORK/other/pano.pfm" -o "$WORK/o8"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures case(s) failed" >&2

@@ -3,7 +3,9 @@
 // and clear errors for files that are not packed environments.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
+#include <glm/gtc/packing.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -220,6 +222,86 @@ TEST(PackedEnvironmentTest, RejectsOtherFiles) {
   broken.roughness.pop_back();
   EXPECT_FALSE(encodePackedEnvironment(broken).ok());
   EXPECT_FALSE(writePackedEnvironment(dir + "/no/folder/env.hdr", env).ok());
+}
+
+// The KTX 2.0 copy (encodeKtx2Environment) as the specification lays it out: header, index,
+// the level index pointing at 8-byte aligned levels stored smallest first, faces in order with
+// rows from t = 0, half floats within their precision, the manifest in the key/value data.
+TEST(PackedEnvironmentTest, Ktx2CopyFollowsTheSpecification) {
+  const PackedEnvironment env = randomEnvironment(16, 3, 5);
+  auto bytes = encodeKtx2Environment(env);
+  ASSERT_TRUE(bytes.ok()) << bytes.message();
+  auto again = encodeKtx2Environment(env);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(*bytes, *again) << "deterministic";
+  const std::vector<uint8_t>& b = *bytes;
+  auto u32 = [&](size_t at) {
+    return uint32_t{b[at]} | uint32_t{b[at + 1]} << 8 | uint32_t{b[at + 2]} << 16 |
+           uint32_t{b[at + 3]} << 24;
+  };
+  auto u64 = [&](size_t at) { return uint64_t{u32(at)} | uint64_t{u32(at + 4)} << 32; };
+  const uint8_t identifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+  ASSERT_GT(b.size(), 80u);
+  EXPECT_TRUE(std::equal(identifier, identifier + 12, b.begin()));
+  EXPECT_EQ(u32(12), 97u);  // VK_FORMAT_R16G16B16A16_SFLOAT
+  EXPECT_EQ(u32(16), 2u);   // typeSize
+  EXPECT_EQ(u32(20), 16u);
+  EXPECT_EQ(u32(24), 16u);
+  EXPECT_EQ(u32(28), 0u);  // depth
+  EXPECT_EQ(u32(32), 0u);  // layers
+  EXPECT_EQ(u32(36), 6u);  // faces
+  EXPECT_EQ(u32(40), 3u);  // levels
+  EXPECT_EQ(u32(44), 0u);  // supercompression
+  // The data format descriptor right after the level index; its total size leads it.
+  const uint32_t dfd = u32(48), dfdLength = u32(52);
+  EXPECT_EQ(dfd, 80u + 3 * 24);
+  EXPECT_EQ(u32(dfd), dfdLength);
+  EXPECT_EQ(dfdLength, 4u + 24 + 4 * 16);
+  // Key/value data: "KTXwriter" and the manifest, sorted, NUL-terminated.
+  const uint32_t kvd = u32(56), kvdLength = u32(60);
+  EXPECT_EQ(kvd, dfd + dfdLength);
+  const std::string kv(b.begin() + kvd, b.begin() + kvd + kvdLength);
+  const size_t writer = kv.find(std::string("KTXwriter\0", 10));
+  const size_t manifestAt = kv.find(std::string(kKtx2ManifestKey) + '\0');
+  ASSERT_NE(writer, std::string::npos);
+  ASSERT_NE(manifestAt, std::string::npos);
+  EXPECT_LT(writer, manifestAt);
+  const std::string manifestText(kv.c_str() + manifestAt + std::strlen(kKtx2ManifestKey) + 1);
+  auto manifest = packedManifestJson(env);
+  ASSERT_TRUE(manifest.ok());
+  EXPECT_EQ(manifestText, *manifest);
+  EXPECT_EQ(u64(64), 0u);  // no supercompression global data
+  // Levels: aligned to 8, smallest first, the last one ending the file.
+  uint64_t previousStart = b.size();
+  for (int m = 0; m < 3; ++m) {
+    const uint64_t start = u64(80 + 24 * m), length = u64(88 + 24 * m);
+    const int n = 16 >> m;
+    EXPECT_EQ(start % 8, 0u) << m;
+    EXPECT_EQ(length, uint64_t(6) * n * n * 8) << m;
+    EXPECT_EQ(u64(96 + 24 * m), length) << "uncompressed length";
+    EXPECT_LT(start, previousStart) << "level " << m << " stored before level " << m - 1;
+    if (m == 0) {
+      EXPECT_EQ(start + length, b.size());
+    }
+    previousStart = start;
+    // Every texel of the level, face after face, row after row, as half floats.
+    float worst = 0.0f;
+    for (int f = 0; f < 6; ++f) {
+      const Image& face = env.specular.face(m, f);
+      for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+          const size_t at = start + ((static_cast<size_t>(f) * n + y) * n + x) * 8;
+          for (int c = 0; c < 4; ++c) {
+            const float v =
+                glm::unpackHalf1x16(static_cast<uint16_t>(b[at + 2 * c] | b[at + 2 * c + 1] << 8));
+            const float want = c < 3 ? face.pixel(x, y)[c] : 1.0f;
+            worst = std::max(worst, std::abs(v - want) / std::max(std::abs(want), 6.2e-5f));
+          }
+        }
+      }
+    }
+    EXPECT_LT(worst, 1.0f / 1024.0f) << "level " << m;
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "passes/camera_math.h"
 #include "penumbra/environment.h"
@@ -20,7 +21,7 @@ class SkyShadowGLTest : public GlFixture {};
 // and Y in units of the height (the standard closed form).
 double cornerFormFactor(double x, double y) {
   const double a = std::sqrt(1.0 + x * x), b = std::sqrt(1.0 + y * y);
-  return (x / a * std::atan(y / a) + y / b * std::atan(x / b)) / (2.0 * glm::pi<double>());
+  return (x / a * std::atan(y / a) + y / b * std::atan(x / b)) / (2.0 * std::numbers::pi);
 }
 
 float floorUnderPlate(bool skyShadows, int frames) {

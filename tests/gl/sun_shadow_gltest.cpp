@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "passes/camera_math.h"
 #include "penumbra/environment.h"
@@ -82,7 +83,7 @@ Render renderPlate(const PackedEnvironment& env, float rotation = 0.0f) {
 // Visible fraction of a uniform disk of (projected) radius R cut by an edge at offset s.
 double diskFraction(double s) {
   s = std::clamp(s, -1.0, 1.0);
-  return 1.0 - (std::acos(s) - s * std::sqrt(1.0 - s * s)) / glm::pi<double>();
+  return 1.0 - (std::acos(s) - s * std::sqrt(1.0 - s * s)) / std::numbers::pi;
 }
 
 // Offset (in units of R) where the fraction reaches f.
@@ -96,7 +97,7 @@ double diskOffset(double f) {
 }
 
 TEST_F(SunShadowGLTest, PenumbraWidthFollowsTheSunsSize) {
-  const double radius = 3.0 * glm::pi<double>() / 180.0;
+  const double radius = 3.0 * std::numbers::pi / 180.0;
   const PackedEnvironment env = sunEnvironment({0.0f, 1.0f, 0.0f}, radius);
   ASSERT_TRUE(env.sun.has_value());
   const Render r = renderPlate(env);
@@ -132,7 +133,7 @@ TEST_F(SunShadowGLTest, TheSunTurnsWithTheEnvironment) {
   // A sun 45 degrees from the zenith towards -x shades the floor beyond the plate's edge (the
   // shadow falls towards +x); turned by 180 degrees it shines from +x and the floor there is lit.
   const glm::vec3 dir = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.0f));
-  const PackedEnvironment env = sunEnvironment(dir, 1.0 * glm::pi<double>() / 180.0);
+  const PackedEnvironment env = sunEnvironment(dir, 1.0 * std::numbers::pi / 180.0);
   const Render a = renderPlate(env, 0.0f), b = renderPlate(env, 180.0f);
   const glm::vec3 p(1.5f, 0.0f, 0.0f);  // half a unit past the edge
   EXPECT_LT(a.at(p), 0.1f * b.at(p));

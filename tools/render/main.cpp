@@ -12,6 +12,9 @@
 #include <CLI/CLI.hpp>
 
 #include "../common/setting_flags.h"
+#include "batch.h"
+#include "output.h"
+#include "penumbra/batch.h"
 #include "penumbra/gl_context.h"
 #include "penumbra/image.h"
 #include "penumbra/render_job.h"
@@ -21,29 +24,13 @@
 
 namespace fs = std::filesystem;
 using namespace penumbra;
+using penumbra::tools::writeOutput;
 
 namespace {
 
 int fail(const std::string& message) {
   std::fprintf(stderr, "penumbra-render: error: %s\n", message.c_str());
   return 1;
-}
-
-bool hasExtension(const std::string& path, const char* ext) {
-  std::string e = fs::path(path).extension().string();
-  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e == ext;
-}
-
-Status writeOutput(const std::string& path, Renderer& renderer) {
-  if (hasExtension(path, ".exr") || hasExtension(path, ".hdr")) {
-    auto radiance = renderer.readRadiance();
-    if (!radiance) return radiance.error();
-    return writeImage(path, *radiance);
-  }
-  auto display = renderer.readDisplay();
-  if (!display) return display.error();
-  return writeImage(path, *display);
 }
 
 // Frames 1, 2, 4, ... m side by side (wrapping after 4 per row), at half size each.
@@ -73,16 +60,17 @@ int main(int argc, char** argv) {
   CLI::App app{
       "penumbra-render: progressive physically-based rendering of glTF scenes lit by an\n"
       "HDR environment and area lights. OUT.png is the displayed image (exposure, tone\n"
-      "mapping, sRGB); OUT.exr is the linear radiance before exposure."};
+      "mapping, sRGB); OUT.exr is the linear radiance before exposure.\n"
+      "With --batch JOBS.jsonl it renders one job per line in one process."};
   app.set_version_flag("--version", std::string("penumbra-render ") + version());
-  std::string outPath, size, envText, glName = "auto", contactPath;
+  std::string outPath, size, envText, glName = "auto", contactPath, shardText;
+  tools::BatchOptions batch;
   int saveEvery = 0;
   int64_t memoryBudgetMb = 2048;
   bool quiet = false, info = false, halfFloat = false;
   JobRequest request;
-  app.add_option("scene", request.scenePath, "scene file (.json) or model (.gltf/.glb)")
-      ->required();
-  app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)")->required();
+  app.add_option("scene", request.scenePath, "scene file (.json) or model (.gltf/.glb)");
+  app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)");
   app.add_option("--size", size, "resolution WxH (default from the scene file, else 1280x720)");
   app.add_option("--camera", request.camera, "camera name or index");
   app.add_option("--env", envText,
@@ -101,17 +89,37 @@ int main(int argc, char** argv) {
                  "memory of the render targets (default 2048)");
   app.add_flag("--info", info, "print the GL context and capability report");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
+  app.add_option("--batch", batch.jobsPath,
+                 "render every job of a JSON-lines file, one object per line with these "
+                 "options' names (\"scene\", \"output\", \"size\", \"env\", \"frames\", ...; "
+                 "the command line's apply under them) with one GL context")
+      ->group("Batch");
+  app.add_option("--results", batch.resultsPath,
+                 "batch: results file, one JSON line per job (default JOBS.results.jsonl)")
+      ->group("Batch");
+  app.add_option("--shard", shardText,
+                 "batch: render only shard I of N (jobs k with k % N == I), e.g. "
+                 "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
+      ->group("Batch");
+  app.add_flag("--force", batch.force, "batch: render jobs whose output exists")->group("Batch");
   CLI11_PARSE(app, argc, argv);
+  const bool batchMode = !batch.jobsPath.empty();
+  if (batchMode && (!request.scenePath.empty() || !outPath.empty())) {
+    return fail("--batch takes its scenes and outputs from the job file: no scene or -o");
+  }
+  if (!batchMode && (request.scenePath.empty() || outPath.empty())) {
+    return fail("give a scene and -o OUT (or --batch JOBS.jsonl); --help lists the options");
+  }
+  if (!batchMode && (!shardText.empty() || !batch.resultsPath.empty() || batch.force)) {
+    return fail("--shard, --results and --force apply to --batch only");
+  }
 
   request.settings = settingFlags.overrides();
   if (!size.empty()) {
-    int w = 0, h = 0;
-    char x = 0, tail = 0;
-    if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || (x != 'x' && x != 'X')) {
-      return fail("--size must be WxH, e.g. 1280x720 (got '" + size + "')");
-    }
-    request.settings.emplace_back("width", std::to_string(w));
-    request.settings.emplace_back("height", std::to_string(h));
+    auto wh = parseSize(size);
+    if (!wh) return fail("--" + wh.message());
+    request.settings.emplace_back("width", std::to_string(wh->first));
+    request.settings.emplace_back("height", std::to_string(wh->second));
   }
   if (!envText.empty()) {
     auto spec = parseEnvironmentSpec(envText);
@@ -123,13 +131,30 @@ int main(int argc, char** argv) {
                 std::to_string(memoryBudgetMb));
   }
   request.memoryBudgetBytes = memoryBudgetMb << 20;
+  if (batchMode) {
+    if (!shardText.empty()) {
+      auto shard = parseShard(shardText);
+      if (!shard) return fail(shard.message());
+      batch.shard = *shard;
+    }
+    auto backend = parseBackend(glName);
+    if (!backend) return fail(backend.message());
+    batch.backend = *backend;
+    batch.defaults = request;
+    batch.quiet = quiet;
+    batch.info = info;
+    batch.halfFloat = halfFloat;
+    if (saveEvery > 0 || !contactPath.empty()) {
+      return fail("--save-every and --contact-sheet apply to a single render, not --batch");
+    }
+    return tools::runBatch(batch);
+  }
   // Refuse an output we cannot write before spending time on the render.
   const fs::path outDir = fs::path(outPath).parent_path();
   if (!outDir.empty() && !fs::is_directory(outDir)) {
     return fail("output folder '" + outDir.string() + "' does not exist");
   }
-  if (!hasExtension(outPath, ".png") && !hasExtension(outPath, ".exr") &&
-      !hasExtension(outPath, ".hdr")) {
+  if (!tools::isOutputPath(outPath)) {
     return fail("output must end in .png, .exr or .hdr: " + outPath);
   }
 

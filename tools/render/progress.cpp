@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace penumbra::tools {
 
-ProgressBar::ProgressBar(std::string label, int total, bool enabled)
+ProgressBar::ProgressBar(std::string label, int total, bool enabled, std::string unit)
     : label_(std::move(label)),
+      unit_(std::move(unit)),
       total_(total),
       enabled_(enabled),
       start_(std::chrono::steady_clock::now()) {}
@@ -19,8 +21,9 @@ void ProgressBar::update(int done, int total) {
   const double left = done > 0 ? elapsed / done * (total_ - done) : 0.0;
   const int width = 30;
   const int filled = width * std::min(done, total_) / total_;
-  std::fprintf(stderr, "\r%s [%.*s%*s] frame %d of %d, %.1f s left   ", label_.c_str(), filled,
-               "##############################", width - filled, "", done, total_, left);
+  std::fprintf(stderr, "\r%s [%.*s%*s] %s %d of %d, %.1f s left   ", label_.c_str(), filled,
+               "##############################", width - filled, "", unit_.c_str(), done, total_,
+               left);
   std::fflush(stderr);
 }
 

@@ -1,4 +1,5 @@
-// A one-line progress bar on stderr ("frame i of m, time left"), shown only on a terminal.
+// A one-line progress bar on stderr ("frame i of m, time left"; "job i of n" for a batch),
+// shown only on a terminal.
 #pragma once
 
 #include <chrono>
@@ -8,13 +9,14 @@ namespace penumbra::tools {
 
 class ProgressBar {
  public:
-  ProgressBar(std::string label, int total, bool enabled);
+  ProgressBar(std::string label, int total, bool enabled, std::string unit = "frame");
   // `total` may change as it goes (an automatic view's expected frames).
   void update(int done, int total = 0);
   void finish();
 
  private:
   std::string label_;
+  std::string unit_;
   int total_;
   bool enabled_;
   std::chrono::steady_clock::time_point start_;

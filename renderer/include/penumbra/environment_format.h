@@ -36,6 +36,15 @@ Result<std::vector<uint8_t>> encodePackedEnvironment(const PackedEnvironment& en
 // replaced by .json. Both atomically.
 Status writePackedEnvironment(const std::string& path, const PackedEnvironment& env);
 
+// The same environment as a KTX 2.0 cube map for other engines (three.js's KTX2Loader, the glTF
+// Sample Viewer): VK_FORMAT_R16G16B16A16_SFLOAT, every mip, faces +X -X +Y -Y +Z -Z with rows
+// from t = 0 as GL uploads them, alpha 1, the manifest under kKtx2ManifestKey in the key/value
+// data, KTXwriter the generator. Deterministic.
+inline constexpr const char* kKtx2ManifestKey = "penumbra.environment";
+Result<std::vector<uint8_t>> encodeKtx2Environment(const PackedEnvironment& env);
+// Writes it atomically.
+Status writeKtx2Environment(const std::string& path, const PackedEnvironment& env);
+
 // Reads a packed file: validates the manifest against the image size and unpacks the faces.
 Result<PackedEnvironment> readPackedEnvironment(const std::string& path);
 Result<PackedEnvironment> readPackedEnvironmentFromMemory(std::span<const uint8_t> bytes,

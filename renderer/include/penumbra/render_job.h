@@ -12,6 +12,7 @@
 //    each fit the budget.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -28,6 +29,26 @@
 
 namespace penumbra {
 
+// Environments already loaded or prefiltered, by what made them (the resolved spec; for a file
+// its path, size, time and the prefilter options): a batch of jobs that share a panorama
+// prefilters it once. Holds the newest `capacity` entries. Not thread-safe.
+class EnvironmentCache {
+ public:
+  struct Entry {
+    PackedEnvironment environment;
+    std::string name;
+    std::vector<std::string> warnings;  // what loading it warned about, repeated on each hit
+  };
+  explicit EnvironmentCache(size_t capacity = 4) : capacity_(capacity) {}
+  const Entry* find(const std::string& key) const;
+  void put(const std::string& key, Entry entry);
+  size_t size() const { return entries_.size(); }
+
+ private:
+  size_t capacity_;
+  std::vector<std::pair<std::string, Entry>> entries_;  // oldest first
+};
+
 struct JobRequest {
   std::string scenePath;  // a scene file (.json) or a model (.gltf/.glb)
   // Settings over the scene file's, as (schema key, text) pairs: {"frames", "64"}.
@@ -36,7 +57,8 @@ struct JobRequest {
   std::optional<EnvironmentSpec> environment;  // replaces the scene file's
   int64_t memoryBudgetBytes = int64_t{2} << 30;
   int maxTextureSize = 4096;
-  EnvironmentLoadOptions panorama;  // how panoramas are prefiltered on load
+  EnvironmentLoadOptions panorama;           // how panoramas are prefiltered on load
+  EnvironmentCache* environments = nullptr;  // reused and filled when given
 };
 
 struct RenderJob {
@@ -45,6 +67,8 @@ struct RenderJob {
   Camera camera;
   PackedEnvironment environment;
   std::string environmentName;  // "none", "studio", "uniform(r, g, b)" or the file name
+  // What made the environment (EnvironmentCache's key): equal keys, equal environments.
+  std::string environmentKey;
   RenderSettings settings;
   std::vector<std::string> warnings;  // the scene file's, then the glTF's
 
@@ -60,6 +84,10 @@ Result<RenderSettings> applySettingOverrides(
 Result<PackedEnvironment> resolveEnvironment(const EnvironmentSpec& spec, const Scene& scene,
                                              const EnvironmentLoadOptions& panorama,
                                              std::string* name = nullptr);
+// The EnvironmentCache key of a spec resolved for a scene; empty when it cannot be known (a
+// file that cannot be read: loading it reports why).
+std::string environmentCacheKey(const EnvironmentSpec& spec, const Scene& scene,
+                                const EnvironmentLoadOptions& panorama);
 // Estimated GPU memory of the render targets for these settings, and the budget check.
 int64_t estimateTargetBytes(const RenderSettings& settings);
 Status checkTargetBudget(const RenderSettings& settings, int64_t budgetBytes);

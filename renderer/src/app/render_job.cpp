@@ -1,9 +1,57 @@
 #include "penumbra/render_job.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 namespace penumbra {
+
+const EnvironmentCache::Entry* EnvironmentCache::find(const std::string& key) const {
+  for (const auto& [k, entry] : entries_) {
+    if (k == key) return &entry;
+  }
+  return nullptr;
+}
+
+void EnvironmentCache::put(const std::string& key, Entry entry) {
+  std::erase_if(entries_, [&](const auto& e) { return e.first == key; });
+  entries_.emplace_back(key, std::move(entry));
+  while (entries_.size() > capacity_) entries_.erase(entries_.begin());
+}
+
+std::string environmentCacheKey(const EnvironmentSpec& spec, const Scene& scene,
+                                const EnvironmentLoadOptions& panorama) {
+  using Kind = EnvironmentSpec::Kind;
+  Kind kind = spec.kind;
+  if (kind == Kind::Default) kind = scene.lights.empty() ? Kind::Studio : Kind::None;
+  char buf[160];
+  switch (kind) {
+    case Kind::None:
+    case Kind::Default:
+      return "none";
+    case Kind::Studio:
+      return "studio";
+    case Kind::Uniform:
+      std::snprintf(buf, sizeof buf, "uniform %a %a %a", spec.radiance.r, spec.radiance.g,
+                    spec.radiance.b);
+      return buf;
+    case Kind::File: {
+      namespace fs = std::filesystem;
+      std::error_code ec;
+      const fs::path path = fs::absolute(spec.path, ec);
+      const auto size = fs::file_size(path, ec);
+      if (ec) return {};
+      const auto time = fs::last_write_time(path, ec);
+      if (ec) return {};
+      std::snprintf(buf, sizeof buf, " %ju %lld %d %d %a", static_cast<uintmax_t>(size),
+                    static_cast<long long>(time.time_since_epoch().count()), panorama.faceSize,
+                    panorama.samples, panorama.sunThreshold);
+      return "file " + path.string() + buf;
+    }
+  }
+  return {};
+}
 
 Result<RenderSettings> applySettingOverrides(
     RenderSettings s, const std::vector<std::pair<std::string, std::string>>& overrides) {
@@ -117,9 +165,24 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   EnvironmentLoadOptions panorama = request.panorama;
   panorama.warnings = &job.warnings;
   panorama.sunThreshold = job.settings.sunThreshold;
+  job.environmentKey = environmentCacheKey(spec, job.scene, panorama);
+  EnvironmentCache* cache = job.environmentKey.empty() ? nullptr : request.environments;
+  if (const EnvironmentCache::Entry* hit = cache ? cache->find(job.environmentKey) : nullptr) {
+    job.environment = hit->environment;
+    job.environmentName = hit->name;
+    job.warnings.insert(job.warnings.end(), hit->warnings.begin(), hit->warnings.end());
+    return job;
+  }
+  const size_t warningsBefore = job.warnings.size();
   auto env = resolveEnvironment(spec, job.scene, panorama, &job.environmentName);
   if (!env) return env.error();
   job.environment = std::move(*env);
+  if (cache) {
+    cache->put(job.environmentKey,
+               {job.environment, job.environmentName,
+                std::vector<std::string>(job.warnings.begin() + static_cast<long>(warningsBefore),
+                                         job.warnings.end())});
+  }
   return job;
 }
 
