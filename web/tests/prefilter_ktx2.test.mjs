@@ -15,9 +15,10 @@ const PREFILTER = process.env.PENUMBRA_PREFILTER ||
 const SIZE = 16;      // faces 16, 8, 4: three levels
 const LEVELS = 3;
 const FACES = ['px', 'nx', 'py', 'ny', 'pz', 'nz'];
-// RGBE keeps 8 bits of mantissa (relative error up to 2^-8 of the largest channel), the KTX2
-// file half floats (2^-11): a wrong face, row order or level moves texels by far more.
-const REL_TOL = 0.01;
+// RGBE keeps 8 bits of mantissa: a step is 2^-8 to 2^-7 of the largest channel (measured here:
+// 0.0078), the KTX2 file's half floats 2^-11. A wrong face, row order or level moves texels by
+// far more.
+const REL_TOL = 0.012;
 
 let server, browser;
 const work = join(outDir, 'prefilter-ktx2');
