@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)");
   app.add_option("--size", size, "resolution WxH (default from the scene file, else 1280x720)");
   app.add_option("--camera", request.camera, "camera name or index");
+  app.add_option("--variant", request.variant,
+                 "KHR_materials_variants variant: name or index (default: the scene file's, "
+                 "else the primitives' own materials)");
   app.add_option("--env", envText,
                  "environment: none (black), studio (the neutral studio shipped with "
                  "Penumbra), r,g,b (uniform radiance) or a file (packed .hdr from "

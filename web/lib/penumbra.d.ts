@@ -121,6 +121,10 @@ export interface SceneInfo {
   triangles: number;
   lights: number;
   cameras: string[];
+  /** KHR_materials_variants: the variants' names (empty without the extension). */
+  variants: string[];
+  /** The variant shown; null for the primitives' own materials. */
+  variant: string | null;
   warnings: string[];
   bounds: Bounds;
   environment: string;
@@ -233,6 +237,11 @@ export declare class Viewer {
   loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
   /** Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), or [r, g, b]. */
   setEnvironment(source: Source | Vec3, options?: { name?: string }): Promise<void>;
+  /**
+   * KHR_materials_variants: shows a variant of the loaded scene by name (or index); null or
+   * 'default' for the primitives' own materials. Restarts the view. Returns the variant shown.
+   */
+  setVariant(name: string | number | null): string | null;
   /** A look-at camera, or 'reset' for the scene's own camera. */
   setCamera(camera: CameraSpec | 'reset'): Promise<void>;
   setSettings(changes: Settings): Promise<EffectiveSettings>;

@@ -173,7 +173,8 @@ export class Viewer {
       this.#pv.pv_remove_tree(root);
     }
     this.#sceneInfo = { name: main.name, triangles: info.triangles, lights: info.lights,
-                        cameras: info.cameras, warnings: info.warnings, bounds: info.bounds,
+                        cameras: info.cameras, variants: info.variants, variant: info.variant,
+                        warnings: info.warnings, bounds: info.bounds,
                         environment: info.environment };
     for (const w of info.warnings || []) {
       console.warn(`[penumbra] ${w.startsWith(main.name) ? w : `${main.name}: ${w}`}`);
@@ -186,6 +187,17 @@ export class Viewer {
     this.#refit = true;
     this.#restarted();
     return this.#sceneInfo;
+  }
+
+  // KHR_materials_variants: shows the loaded scene's variant `name` (a name from
+  // info.scene.variants, or its index; null or 'default' for the primitives' own materials).
+  // Restarts the view; the geometry stays on the GPU.
+  setVariant(name) {
+    this.#check();
+    const state = this.#call('pv_set_variant', name === null || name === undefined ? '' : String(name));
+    if (this.#sceneInfo) this.#sceneInfo.variant = state.variant;
+    this.#restarted();
+    return state.variant;
   }
 
   // A packed environment (.hdr from penumbra-prefilter) or an equirectangular panorama

@@ -57,6 +57,7 @@ struct Viewer {
   std::unique_ptr<Renderer> renderer;
   RenderSettings settings;
   std::optional<Scene> scene;
+  int variant = -1;    // KHR_materials_variants: the one shown (-1: the default materials)
   Camera sceneCamera;  // the loaded scene's own camera, for reset
   Camera camera;       // the camera in use
   PackedEnvironment environment = uniformEnvironment(glm::vec3(0.0f));
@@ -122,6 +123,9 @@ json stateJson(const Viewer& v) {
     for (const Camera& c : v.scene->cameras) names.push_back(c.name);
     j["cameras"] = names;
     j["lights"] = v.scene->lights.size();
+    j["variants"] = v.scene->variants;
+    j["variant"] =
+        v.variant >= 0 ? json(v.scene->variants[static_cast<size_t>(v.variant)]) : json(nullptr);
   }
   return j;
 }
@@ -139,7 +143,10 @@ Status buildGpuState(Viewer& v) {
   v.renderer = std::move(*r);
   PN_TRY(v.renderer->setSettings(v.settings));
   PN_TRY(v.renderer->setEnvironment(v.environment));
-  if (v.scene) PN_TRY(v.renderer->setScene(*v.scene));
+  if (v.scene) {
+    PN_TRY(v.renderer->setScene(*v.scene));
+    PN_TRY(v.renderer->setVariant(v.variant));
+  }
   v.renderer->setCamera(v.camera);
   return {};
 }
@@ -152,9 +159,9 @@ Result<Viewer*> viewer() {
 
 // The sun threshold in force when the file is loaded applies (settings.sunThreshold).
 Result<PackedEnvironment> loadEnvironmentFile(const std::string& path, float sunThreshold) {
-  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize,
-                                .samples = kPanoramaSamples,
-                                .sunThreshold = sunThreshold});
+  return loadEnvironment(
+      path,
+      {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples, .sunThreshold = sunThreshold});
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -197,8 +204,10 @@ json loadScene(Viewer& v, const std::string& path) {
     (void)r.setSettings(v.settings);
     return errorJson(st.message());
   }
+  (void)r.setVariant(job->variant);  // found in this scene by RenderJob: cannot fail
   r.setCamera(job->camera);
   v.settings = job->settings;
+  v.variant = job->variant;
   v.scene = std::move(job->scene);
   v.sceneCamera = job->camera;
   v.camera = job->camera;
@@ -354,6 +363,21 @@ EMSCRIPTEN_KEEPALIVE const char* pv_get_state() {
   });
 }
 
+// Shows a KHR_materials_variants variant by name or index ("" or "default": the primitives'
+// own materials); restarts accumulation.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_variant(const char* nameOrIndex) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (!(*v)->scene) return errorJson("setVariant: no scene loaded");
+    auto index = findVariant(*(*v)->scene, nameOrIndex ? nameOrIndex : "");
+    if (!index) return errorJson(index.message());
+    if (auto st = (*v)->renderer->setVariant(*index); !st) return errorJson(st.message());
+    (*v)->variant = *index;
+    return stateJson(**v);
+  });
+}
+
 // A look-at camera (the orbit controls). yfov in radians; znear from the scene's bounds so the
 // depth range fits wherever the orbit goes.
 EMSCRIPTEN_KEEPALIVE const char* pv_set_camera(float ex, float ey, float ez, float tx, float ty,
@@ -498,7 +522,9 @@ EMSCRIPTEN_KEEPALIVE const char* pv_read(int display) {
     if (img->channels != 4) return errorJson("read-back: expected an RGBA image");
     (*v)->readback = std::move(*img);
     const Image& out = (*v)->readback;
-    return {{"width", out.width}, {"height", out.height}, {"frames", r.framesDone()},
+    return {{"width", out.width},
+            {"height", out.height},
+            {"frames", r.framesDone()},
             {"ptr", reinterpret_cast<uintptr_t>(out.pixels.data())}};
   });
 }

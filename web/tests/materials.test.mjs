@@ -4,13 +4,16 @@
 // one texture array per material) loads without a warning and renders like native
 // penumbra-render; the same scene with its textures as KTX2 (tools/assets/gen_compressed.mjs),
 // which the browser transcodes to RGBA8 because every one of them is an extension texture,
-// renders like the PNGs.
+// renders like the PNGs. KHR_materials_variants: the material grid with a variant that moves
+// every sphere's material lists its variant, switches to it with setVariant and renders like
+// native penumbra-render --variant.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdirSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { blocks, closeServer, diff, dist, fmt, launch, nativeRender, outDir, pixels,
-         recordConsole, serve, withTimeout } from './harness.mjs';
+         recordConsole, root, serve, withTimeout } from './harness.mjs';
 
 const WIDTH = 180, HEIGHT = 120;  // the scene camera's 3:2
 const FRAMES = 9;
@@ -30,13 +33,46 @@ const KTX2_BLOCK_MAX_TOL = 0.03;
 
 let server, browser;
 const consoleLines = [];
-let reference;
+let reference, variantReference;
+
+// The material grid with one variant, "shifted", that gives each sphere the material twelve
+// places on (the grid's own .bin beside it), and its native render with --variant shifted.
+function variantGrid() {
+  const dir = join(outDir, 'variants');
+  mkdirSync(dir, { recursive: true });
+  const src = join(root, 'assets/material_grid');
+  const doc = JSON.parse(readFileSync(join(src, 'material_grid.gltf'), 'utf8'));
+  const n = doc.materials.length;
+  doc.extensionsUsed = [...(doc.extensionsUsed || []), 'KHR_materials_variants'];
+  doc.extensions = { ...(doc.extensions || {}), KHR_materials_variants: { variants: [{ name: 'shifted' }] } };
+  for (const mesh of doc.meshes) {
+    for (const p of mesh.primitives) {
+      p.extensions = { ...(p.extensions || {}), KHR_materials_variants: {
+        mappings: [{ material: ((p.material ?? 0) + 12) % n, variants: [0] }] } };
+    }
+  }
+  const gltf = join(dir, 'material_grid_variants.gltf');
+  writeFileSync(gltf, JSON.stringify(doc));
+  copyFileSync(join(src, 'material_grid.bin'), join(dir, 'material_grid.bin'));
+  const png = join(outDir, 'native-variant.png');
+  const bin = join(root, 'build/tools/render/penumbra-render');
+  if (!existsSync(bin)) return { gltf, png: null };
+  const r = spawnSync(bin, [gltf, '-o', png, '--size', `${WIDTH}x${HEIGHT}`, '--frames',
+                            String(FRAMES), '--variant', 'shifted', '-q'],
+                      { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
+                        timeout: 60_000, encoding: 'utf8' });
+  assert.equal(r.status, 0, `penumbra-render --variant failed: ${r.stderr}`);
+  return { gltf, png };
+}
 
 before(async () => {
   mkdirSync(outDir, { recursive: true });
   reference = nativeRender('assets/layers/layers.json', WIDTH, HEIGHT, FRAMES,
                            'native-layers.png', null, consoleLines);
   const extra = reference ? { '/__layers.png': reference.path } : {};
+  variantReference = variantGrid();
+  extra['/assets/material_grid/variants.gltf'] = variantReference.gltf;
+  if (variantReference.png) extra['/__variant.png'] = variantReference.png;
   server = await serve(dist, extra);
   browser = await launch({ viewport: { width: WIDTH, height: HEIGHT } });
 }, { timeout: 90_000 });
@@ -104,4 +140,38 @@ test('every extension texture is sampled in the browser, like native, and from K
   console.log(`# KTX2 vs PNG textures: pixels ${fmt(d)}; 8x8 blocks ${fmt(b)}`);
   assert.ok(d.mean <= KTX2_MEAN_TOL, `pixels: mean > ${KTX2_MEAN_TOL} (${fmt(d)})`);
   assert.ok(b.max <= KTX2_BLOCK_MAX_TOL, `blocks: max > ${KTX2_BLOCK_MAX_TOL} (${fmt(b)})`);
+});
+
+test('KHR_materials_variants: the variant is listed, selected by setVariant, and renders like native', { timeout: TEST_MS }, async () => {
+  const plain = await render('assets/material_grid/variants.gltf', 'variants-default.png');
+  const pg = plain.pg;
+  try {
+    assert.deepEqual(plain.warnings, [], 'the variants file loads without a warning');
+    const info = await pg.evaluate(() => window.penumbraPage.viewer.info.scene);
+    assert.deepEqual(info.variants, ['shifted']);
+    assert.equal(info.variant, null, 'the default materials at first');
+    const bad = await pg.evaluate(() => {
+      try { window.penumbraPage.viewer.setVariant('tartan'); return null; } catch (e) { return e.message; }
+    });
+    assert.match(bad, /^no variant 'tartan'; available: 0: 'shifted'$/);
+    const before = await pg.evaluate(() => window.penumbraPage.convergedCount);
+    assert.equal(await pg.evaluate(() => window.penumbraPage.viewer.setVariant('shifted')), 'shifted');
+    await pg.waitForFunction((n) => window.penumbraPage.convergedCount > n, before, { timeout: 90_000 });
+    const shifted = await pixels(pg);
+    await pg.screenshot({ path: join(outDir, 'variants-shifted.png') });
+    const change = diff(blocks(shifted, 8), blocks(plain.canvas, 8));
+    console.log(`# variant vs default materials: 8x8 blocks ${fmt(change)}`);
+    assert.ok(change.max > 0.1, `setVariant changed nothing visible (${fmt(change)})`);
+    if (variantReference.png) {
+      const ref = await pixels(pg, '/__variant.png');
+      const d = diff(shifted, ref);
+      const b = diff(blocks(shifted, 8), blocks(ref, 8));
+      console.log(`# variant canvas vs native --variant: pixels ${fmt(d)}; 8x8 blocks ${fmt(b)}`);
+      assert.ok(d.mean <= NATIVE_MEAN_TOL, `pixels: mean > ${NATIVE_MEAN_TOL} (${fmt(d)})`);
+      assert.ok(b.mean <= NATIVE_BLOCK_MEAN_TOL, `blocks: mean > ${NATIVE_BLOCK_MEAN_TOL} (${fmt(b)})`);
+      assert.ok(b.max <= NATIVE_BLOCK_MAX_TOL, `blocks: max > ${NATIVE_BLOCK_MAX_TOL} (${fmt(b)})`);
+    }
+  } finally {
+    await pg.close().catch(() => {});
+  }
 });

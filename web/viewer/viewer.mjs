@@ -263,6 +263,8 @@ async function main() {
   const sceneUrl = query.get('scene') || DEFAULT_SCENE;
   try {
     await loadScene(viewer, sceneUrl);
+    // ?variant=NAME: a KHR_materials_variants variant of the scene.
+    if (query.get('variant')) viewer.setVariant(query.get('variant'));
   } catch (e) {
     showError(e);
   }

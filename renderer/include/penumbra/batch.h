@@ -25,7 +25,8 @@ struct BatchJob {
 Result<std::pair<int, int>> parseSize(std::string_view text);
 
 // One line of a job file: a JSON object whose keys are penumbra-render's option names:
-// "scene" and "output" (required), "size" ("WxH" or [w, h]), "env", "camera" (name or index),
+// "scene" and "output" (required), "size" ("WxH" or [w, h]), "env", "camera" and "variant"
+// (name or index),
 // "memory-budget" (MB), and any setting by its flag without the dashes ("frames", "tonemap",
 // "no-probe-volume") or its key ("toneMapper"). Values are strings, numbers or booleans. The
 // request starts as `defaults` (the command line's options) and the line's values override them.

@@ -5,7 +5,7 @@
 // errors are the same everywhere:
 //  - settings: the scene file's, then the request's overrides (schema keys), then validated;
 //  - camera: the request's, else the scene file's, else the glTF's first, else a framing of the
-//    scene's bounds; a name or index that does not exist is an error;
+//    scene's bounds; a name or index that does not exist is an error (so is a variant);
 //  - environment: the request's, else the scene file's, else by rule: black when the scene
 //    has lights of its own, the neutral studio environment when it has none;
 //  - memory: the decoded scene and, separately, the render targets' estimated GPU memory must
@@ -53,7 +53,8 @@ struct JobRequest {
   std::string scenePath;  // a scene file (.json) or a model (.gltf/.glb)
   // Settings over the scene file's, as (schema key, text) pairs: {"frames", "64"}.
   std::vector<std::pair<std::string, std::string>> settings;
-  std::string camera;                          // name or index; empty: see above
+  std::string camera;   // name or index; empty: see above
+  std::string variant;  // KHR_materials_variants name or index; empty: the scene file's
   std::optional<EnvironmentSpec> environment;  // replaces the scene file's
   int64_t memoryBudgetBytes = int64_t{2} << 30;
   int maxTextureSize = 4096;
@@ -65,6 +66,7 @@ struct RenderJob {
   SceneFile sceneFile;  // as read (before the request's overrides)
   Scene scene;
   Camera camera;
+  int variant = -1;  // KHR_materials_variants index; -1: the primitives' own materials
   PackedEnvironment environment;
   std::string environmentName;  // "none", "studio", "uniform(r, g, b)" or the file name
   // What made the environment (EnvironmentCache's key): equal keys, equal environments.

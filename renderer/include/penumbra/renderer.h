@@ -124,6 +124,10 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   Status setScene(const Scene& scene);
+  // KHR_materials_variants: shows variant `index` of the scene's Scene::variants (-1: the
+  // primitives' own materials, as after setScene). Restarts accumulation; the geometry stays on
+  // the GPU, and so does the probe volume's layout (its light is gathered again).
+  Status setVariant(int index);
   Status setEnvironment(const PackedEnvironment& environment);
   void setCamera(const Camera& camera);
   Status setSettings(const RenderSettings& settings);

@@ -183,7 +183,10 @@ struct Primitive {
   std::vector<glm::vec4> colors;  // COLOR_0, linear RGBA
   std::vector<uint32_t> indices;  // always present (generated 0..n-1 for non-indexed input)
   int material = -1;              // -1 = the glTF default material
-  Bounds bounds;                  // object space
+  // KHR_materials_variants: the material of each of Scene::variants (`material` where a variant
+  // does not map this primitive); empty when the scene has no variants.
+  std::vector<int> variantMaterials;
+  Bounds bounds;  // object space
 };
 
 struct Mesh {
@@ -259,6 +262,9 @@ struct Scene {
   Bounds probeBox;
   glm::ivec3 probeCounts{0};
   std::vector<std::string> warnings;  // non-fatal problems (unknown optional extension, ...)
+  // KHR_materials_variants: the variants' names, in the file's order (a product in several
+  // fabrics, say). Loading shows the primitives' own materials; selectVariant switches.
+  std::vector<std::string> variants;
   size_t triangleCount() const;
 };
 
@@ -279,5 +285,14 @@ Result<Scene> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::stri
 Camera defaultCamera(const Scene& scene);
 // Finds a camera by name, or by index when `nameOrIndex` is a number.
 Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex);
+// Finds a KHR_materials_variants variant by name, or by index when `nameOrIndex` is a number;
+// "" or "default" is -1, the primitives' own materials.
+Result<int> findVariant(const Scene& scene, const std::string& nameOrIndex);
+// The material a primitive shows under `variant` (-1: its own).
+inline int variantMaterial(const Primitive& p, int variant) {
+  return variant >= 0 && variant < static_cast<int>(p.variantMaterials.size())
+             ? p.variantMaterials[static_cast<size_t>(variant)]
+             : p.material;
+}
 
 }  // namespace penumbra

@@ -46,7 +46,8 @@ struct ProbeVolumeSpec {
 struct SceneFile {
   std::string gltfPath;  // resolved against the scene file's folder
   EnvironmentSpec environment;
-  std::string camera;  // name or index; empty: the first camera, else a default one
+  std::string camera;   // name or index; empty: the first camera, else a default one
+  std::string variant;  // KHR_materials_variants name or index; empty: the default materials
   ProbeVolumeSpec probeVolume;
   RenderSettings settings;
   std::vector<std::string> warnings;  // unknown keys and the like

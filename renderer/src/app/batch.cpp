@@ -75,6 +75,8 @@ Status applyOption(BatchJob& job, const std::string& key, const json& value) {
     job.output = *text;
   } else if (key == "camera") {
     job.request.camera = *text;
+  } else if (key == "variant") {
+    job.request.variant = *text;
   } else if (key == "env") {
     auto spec = parseEnvironmentSpec(*text);
     if (!spec) return spec.error();

@@ -161,6 +161,12 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
     job.camera = defaultCamera(job.scene);
   }
 
+  const std::string& variantName =
+      !request.variant.empty() ? request.variant : job.sceneFile.variant;
+  auto variant = findVariant(job.scene, variantName);
+  if (!variant) return variant.error();
+  job.variant = *variant;
+
   const EnvironmentSpec spec = request.environment.value_or(job.sceneFile.environment);
   EnvironmentLoadOptions panorama = request.panorama;
   panorama.warnings = &job.warnings;
@@ -189,6 +195,7 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
 Status RenderJob::applyTo(Renderer& r) const {
   PN_TRY(r.setSettings(settings));
   PN_TRY(r.setScene(scene));
+  PN_TRY(r.setVariant(variant));
   PN_TRY(r.setEnvironment(environment));
   r.setCamera(camera);
   return {};

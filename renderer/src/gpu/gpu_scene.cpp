@@ -35,6 +35,8 @@ Result<std::unique_ptr<GpuPrimitive>> uploadPrimitive(const Primitive& prim, flo
   auto p = std::make_unique<GpuPrimitive>();
   p->vao = gl::VertexArray::create();
   p->material = prim.material;
+  p->ownMaterial = prim.material;
+  p->variantMaterials = prim.variantMaterials;
   p->bounds = prim.bounds;
   p->indexCount = static_cast<int>(prim.indices.size());
   PN_TRY(addAttribute(*p, kPosition, prim.positions, 3));
@@ -89,9 +91,13 @@ Status GpuScene::uploadMeshes(const Scene& scene) {
   return {};
 }
 
-void GpuScene::buildDrawItems(const Scene& scene) {
+void GpuScene::buildDrawItems() {
   const int defaultMaterial = static_cast<int>(materials_.size()) - 1;
-  for (const Instance& inst : scene.instances) {
+  opaque_.clear();
+  blended_.clear();
+  transmissive_.clear();
+  bounds_ = Bounds();
+  for (const Instance& inst : instances_) {
     if (inst.mesh < 0 || inst.mesh >= static_cast<int>(meshes_.size())) continue;
     const glm::mat3 upper(inst.world);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(upper));
@@ -130,8 +136,19 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   auto gs = std::make_unique<GpuScene>();
   PN_TRY(gs->uploadMeshes(scene));
   PN_TRY(gs->uploadMaterials(scene));
-  gs->buildDrawItems(scene);
+  gs->instances_ = scene.instances;
+  gs->variantCount_ = static_cast<int>(scene.variants.size());
+  gs->buildDrawItems();
   return gs;
+}
+
+void GpuScene::selectVariant(int variant) {
+  for (auto& p : primitives_) {
+    p->material = variant >= 0 && variant < static_cast<int>(p->variantMaterials.size())
+                      ? p->variantMaterials[static_cast<size_t>(variant)]
+                      : p->ownMaterial;
+  }
+  buildDrawItems();
 }
 
 void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {

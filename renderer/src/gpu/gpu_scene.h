@@ -24,7 +24,9 @@ struct GpuPrimitive {
   // same buffer; the primitive itself (offset 0) where it has none.
   int captureIndexCount = 0;
   size_t captureByteOffset = 0;
-  int material = -1;
+  int material = -1;  // the one shown: its own or the selected variant's
+  int ownMaterial = -1;
+  std::vector<int> variantMaterials;  // KHR_materials_variants, per variant
   Bounds bounds;
 };
 
@@ -88,6 +90,10 @@ class GpuScene {
   const std::vector<DrawItem>& transmissive() const { return transmissive_; }
   const GpuMaterial& material(int i) const { return materials_[static_cast<size_t>(i)]; }
   const Bounds& bounds() const { return bounds_; }
+  // KHR_materials_variants: shows the variant's materials (-1: the primitives' own) by
+  // rebuilding the draw lists; the buffers and textures stay.
+  void selectVariant(int variant);
+  int variantCount() const { return variantCount_; }
   size_t textureCount() const { return textures_.size(); }
 
   // Sets the material uniforms and binds its textures (units 0..4 and its layers' array) on a
@@ -110,7 +116,7 @@ class GpuScene {
   // default material last), and the draw lists (opaque, BLEND, transmissive).
   Status uploadMeshes(const Scene& scene);
   Status uploadMaterials(const Scene& scene);
-  void buildDrawItems(const Scene& scene);
+  void buildDrawItems();
 
   std::vector<std::unique_ptr<GpuPrimitive>> primitives_;  // per mesh, per primitive
   std::vector<std::vector<GpuPrimitive*>> meshes_;
@@ -119,6 +125,8 @@ class GpuScene {
   std::vector<DrawItem> opaque_;
   std::vector<DrawItem> blended_;
   std::vector<DrawItem> transmissive_;
+  std::vector<Instance> instances_;
+  int variantCount_ = 0;
   Bounds bounds_;
   // Bound to the material units a material leaves empty: WebGL rejects a draw whose sampler
   // units still hold a texture attached to the framebuffer being drawn into.

@@ -30,6 +30,22 @@ Status Renderer::setScene(const Scene& scene) {
   return {};
 }
 
+Status Renderer::setVariant(int index) {
+  if (!impl_->scene) return makeError("setVariant: no scene (call setScene first)");
+  if (index < -1 || index >= impl_->scene->variantCount()) {
+    return makeError("no material variant " + std::to_string(index) + ": the scene has " +
+                     std::to_string(impl_->scene->variantCount()));
+  }
+  gl::StateGuard guard(impl_->options.preserveHostState);
+  impl_->scene->selectVariant(index);
+  // Alpha cut-outs and transmission may differ: point-light shadow maps are drawn again; the
+  // probes keep their places (the geometry is the same) but gather the new materials' light.
+  if (impl_->pointShadows) impl_->pointShadows->invalidate();
+  if (impl_->probes) impl_->probes->clear();
+  impl_->controller.invalidate();
+  return {};
+}
+
 Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   gl::StateGuard guard(impl_->options.preserveHostState);
   auto env = GpuEnvironment::create(environment);

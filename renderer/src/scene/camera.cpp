@@ -1,7 +1,9 @@
-// Scene-level helpers: the default framing camera, camera lookup, triangle count.
+// Scene-level helpers: the default framing camera, camera and variant lookup, triangle count.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -46,9 +48,14 @@ Camera defaultCamera(const Scene& scene) {
   return cam;
 }
 
-Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex) {
-  for (size_t i = 0; i < scene.cameras.size(); ++i) {
-    if (scene.cameras[i].name == nameOrIndex) return static_cast<int>(i);
+namespace {
+
+// The index of `nameOrIndex` among `names` (a name first, then a number); `what` names the kind
+// in the one-line error, which lists what there is.
+Result<int> findNamed(const std::vector<std::string>& names, const std::string& nameOrIndex,
+                      const std::string& what, const std::string& plural) {
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == nameOrIndex) return static_cast<int>(i);
   }
   const bool numeric = !nameOrIndex.empty() && nameOrIndex.size() < 10 &&
                        std::all_of(nameOrIndex.begin(), nameOrIndex.end(), [](char c) {
@@ -56,16 +63,29 @@ Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex) {
                        });
   if (numeric) {
     const size_t index = std::stoul(nameOrIndex);
-    if (index < scene.cameras.size()) return static_cast<int>(index);
+    if (index < names.size()) return static_cast<int>(index);
   }
-  if (scene.cameras.empty()) {
-    return makeError("no camera '" + nameOrIndex + "': the scene has no cameras");
+  if (names.empty()) {
+    return makeError("no " + what + " '" + nameOrIndex + "': the scene has no " + plural);
   }
-  std::string names;
-  for (size_t i = 0; i < scene.cameras.size(); ++i) {
-    names += (i ? ", " : "") + std::to_string(i) + ": '" + scene.cameras[i].name + "'";
+  std::string list;
+  for (size_t i = 0; i < names.size(); ++i) {
+    list += (i ? ", " : "") + std::to_string(i) + ": '" + names[i] + "'";
   }
-  return makeError("no camera '" + nameOrIndex + "'; available: " + names);
+  return makeError("no " + what + " '" + nameOrIndex + "'; available: " + list);
+}
+
+}  // namespace
+
+Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex) {
+  std::vector<std::string> names;
+  for (const Camera& c : scene.cameras) names.push_back(c.name);
+  return findNamed(names, nameOrIndex, "camera", "cameras");
+}
+
+Result<int> findVariant(const Scene& scene, const std::string& nameOrIndex) {
+  if (nameOrIndex.empty() || nameOrIndex == "default") return -1;
+  return findNamed(scene.variants, nameOrIndex, "variant", "material variants");
 }
 
 }  // namespace penumbra

@@ -116,6 +116,8 @@ struct PrimitiveDesc {
   std::optional<DracoDesc> draco;
   // Morph targets: per target, attribute name (POSITION, NORMAL, TANGENT) -> accessor.
   std::vector<std::map<std::string, int>> targets;
+  // KHR_materials_variants mappings: (material, the variants that select it).
+  std::vector<std::pair<int, std::vector<int>>> variantMappings;
 };
 
 struct MeshDesc {
@@ -221,6 +223,7 @@ struct Document {
   std::vector<LightDesc> areaLights;
   std::vector<LightDesc> punctualLights;
   std::vector<SkinDesc> skins;
+  std::vector<std::string> variants;  // KHR_materials_variants (root extension)
 
   // Buffer contents (after loadBuffers): spans into `ownedBuffers` or into the caller's GLB
   // bytes (which outlive the load). A meshopt fallback buffer without data has an empty span.

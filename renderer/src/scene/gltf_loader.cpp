@@ -17,7 +17,7 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 16> kSupportedExtensions = {
+constexpr std::array<std::string_view, 17> kSupportedExtensions = {
     "KHR_texture_transform",      "KHR_materials_emissive_strength",
     "KHR_lights_punctual",        "EXT_lights_area",
     "KHR_mesh_quantization",      "KHR_draco_mesh_compression",
@@ -26,6 +26,7 @@ constexpr std::array<std::string_view, 16> kSupportedExtensions = {
     "KHR_materials_clearcoat",    "KHR_materials_sheen",
     "KHR_materials_transmission", "KHR_materials_volume",
     "KHR_texture_basisu",         "EXT_mesh_gpu_instancing",
+    "KHR_materials_variants",
 };
 
 bool isSupported(const std::string& ext) {
@@ -210,6 +211,7 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   if (scene.instances.empty()) {
     ctx.warn("the scene has no meshes; only the environment will be visible");
   }
+  scene.variants = doc.variants;
   scene.warnings = std::move(ctx.warnings);
   return scene;
 }

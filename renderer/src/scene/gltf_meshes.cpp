@@ -262,6 +262,12 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
   dropNonFinite(tris, prim, ctx, what);
   prim.indices = std::move(tris);
   prim.material = pd.material;
+  if (!doc.variants.empty()) {
+    prim.variantMaterials.assign(doc.variants.size(), pd.material);
+    for (const auto& [material, variants] : pd.variantMappings) {
+      for (int v : variants) prim.variantMaterials[static_cast<size_t>(v)] = material;
+    }
+  }
 
   PN_TRY(finishShading(doc, pd, prim, indexed, mode, ctx, what));
 

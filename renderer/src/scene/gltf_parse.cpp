@@ -143,6 +143,49 @@ void parseAccessors(Parser& p, const json& root, Document& doc, [[maybe_unused]]
   });
 }
 
+// KHR_materials_variants' root list of variant names (before the meshes that map them).
+void parseVariants(Parser& p, const json& root, Document& doc) {
+  const json* rootExt = p.object(root, "extensions", "glTF");
+  const json* ext = rootExt ? p.object(*rootExt, "KHR_materials_variants", "extensions") : nullptr;
+  const std::string vp = "extensions.KHR_materials_variants";
+  const json* variants = ext ? p.array(*ext, "variants", vp) : nullptr;
+  for (size_t i = 0; variants && i < variants->size() && !p.failed(); ++i) {
+    const std::string path = vp + ".variants[" + std::to_string(i) + "]";
+    if (!(*variants)[i].is_object()) {
+      p.fail(path, "must be an object");
+      break;
+    }
+    std::string name = p.string((*variants)[i], "name", path, "", true);
+    doc.variants.push_back(std::move(name));
+  }
+}
+
+// A primitive's KHR_materials_variants mappings: which material each variant selects.
+void parseVariantMappings(Parser& p, const json& ext, const std::string& path, const Document& doc,
+                          const Counts& count, PrimitiveDesc& prim) {
+  const json* v = p.object(ext, "KHR_materials_variants", path);
+  const std::string vp = path + ".KHR_materials_variants";
+  const json* maps = v ? p.array(*v, "mappings", vp) : nullptr;
+  for (size_t k = 0; maps && k < maps->size() && !p.failed(); ++k) {
+    const std::string mp = vp + ".mappings[" + std::to_string(k) + "]";
+    const json& mo = (*maps)[k];
+    if (!mo.is_object()) {
+      p.fail(mp, "must be an object");
+      break;
+    }
+    std::pair<int, std::vector<int>> mapping;
+    mapping.first = p.index(mo, "material", mp, count.materials, "materials", true);
+    const json* vs = p.array(mo, "variants", mp);
+    if (!vs) p.fail(mp, "missing required 'variants'");
+    for (size_t i = 0; vs && i < vs->size() && !p.failed(); ++i) {
+      mapping.second.push_back(p.checkIndex((*vs)[i], mp + ".variants[" + std::to_string(i) + "]",
+                                            doc.variants.size(),
+                                            "KHR_materials_variants variants"));
+    }
+    prim.variantMappings.push_back(std::move(mapping));
+  }
+}
+
 // Parses the 'meshes' array.
 void parseMeshes(Parser& p, const json& root, Document& doc, [[maybe_unused]] LoadContext& ctx,
                  [[maybe_unused]] const Counts& count) {
@@ -198,6 +241,7 @@ void parseMeshes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Lo
           }
           prim.draco = draco;
         }
+        parseVariantMappings(p, *ext, pp + ".extensions", doc, count, prim);
       }
       m.primitives.push_back(std::move(prim));
     }
@@ -500,6 +544,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
 
   parseAccessors(p, root, doc, ctx, count);
 
+  parseVariants(p, root, doc);
   parseMeshes(p, root, doc, ctx, count);
 
   parseLights(p, root, doc, ctx, count);

@@ -259,8 +259,8 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   SceneFile sf;
   RenderSettings& s = sf.settings;
   std::set<std::string> topLevel = groupKeys("");
-  topLevel.insert({"gltf", "environment", "camera", "resolution", "background", "progressive",
-                   "probeVolume", "$schema", "comment"});
+  topLevel.insert({"gltf", "environment", "camera", "variant", "resolution", "background",
+                   "progressive", "probeVolume", "$schema", "comment"});
   warnUnknown(doc, topLevel, "the scene file", sf.warnings);
   auto fail = [&](const Error& e) { return makeError(name + ": " + e.message); };
 
@@ -272,14 +272,19 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   if (auto it = doc.find("environment"); it != doc.end()) {
     PN_TRY(readEnvironment(*it, baseDir, name, sf));
   }
-  if (auto it = doc.find("camera"); it != doc.end()) {
+  for (const char* key : {"camera", "variant"}) {
+    std::string& out = std::string(key) == "camera" ? sf.camera : sf.variant;
+    auto it = doc.find(key);
+    if (it == doc.end()) continue;
     if (it->is_string()) {
-      sf.camera = it->get<std::string>();
+      out = it->get<std::string>();
     } else if (it->is_number_integer()) {
-      if (!fitsIntegral<int>(*it)) return makeError(name + ": 'camera' index is out of range");
-      sf.camera = std::to_string(it->get<int>());
+      if (!fitsIntegral<int>(*it)) {
+        return makeError(name + ": '" + key + "' index is out of range");
+      }
+      out = std::to_string(it->get<int>());
     } else {
-      return makeError(name + ": 'camera' must be a name or an index");
+      return makeError(name + ": '" + key + "' must be a name or an index");
     }
   }
   if (auto it = doc.find("resolution"); it != doc.end()) {
@@ -329,6 +334,7 @@ std::string sceneFileJson(const SceneFile& sf) {
       break;
   }
   if (!sf.camera.empty()) doc["camera"] = sf.camera;
+  if (!sf.variant.empty()) doc["variant"] = sf.variant;
   const ProbeVolumeSpec& pv = sf.probeVolume;
   if (pv.hasBox || pv.counts != glm::ivec3(0)) {
     json p = json::object();

@@ -74,6 +74,7 @@ void generateNormals(Primitive& p) {
 void unweldVertices(Primitive& p) {
   Primitive out;
   out.material = p.material;
+  out.variantMaterials = p.variantMaterials;
   out.bounds = p.bounds;
   const size_t n = p.indices.size();
   out.positions.reserve(n);
