@@ -93,9 +93,17 @@ for s in cornell_box/cornell_box.json material_grid/material_grid.json glass/gla
   name=$(basename "$s" | tr . _)
   echo "{\"scene\": \"$A/$s\", \"output\": \"$D/out/$name.png\", \"size\": \"48x32\", \"frames\": 4}"
 done >"$JOBS"
+# Submits the array and waits for it (polling squeue: sbatch --wait polls every few seconds).
 submit() {
-  sbatch --wait --array=0-2 --output="$D/$1-%a.out" --wrap \
-    "$TOOL --batch $JOBS --shard \$SLURM_ARRAY_TASK_ID/\$SLURM_ARRAY_TASK_COUNT -q" >/dev/null
+  local id
+  id=$(sbatch --parsable --array=0-2 --output="$D/$1-%a.out" --wrap \
+    "$TOOL --batch $JOBS --shard \$SLURM_ARRAY_TASK_ID/\$SLURM_ARRAY_TASK_COUNT -q") || return 1
+  for _ in $(seq 600); do
+    [ -z "$(squeue -h -j "${id%%;*}" 2>/dev/null)" ] && return 0
+    sleep 0.2
+  done
+  echo "the array did not finish in 120 s"
+  return 1
 }
 if ! submit task; then
   fail "the array failed: $(cat "$D"/task-*.out 2>/dev/null)"

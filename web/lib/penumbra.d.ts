@@ -172,6 +172,8 @@ export interface ViewerState {
   /** Milliseconds of the last intermediate frame (its parts' time), and of the last frame 1. */
   frameMs: number;
   frame1Ms: number;
+  /** Milliseconds of the view's first picture (frame 1 at the preview's size, out of the mean). */
+  previewMs: number;
   /** Frames completed and parts drawn in the last animation frame that stepped. */
   stepsPerTick: number;
   partsPerTick: number;

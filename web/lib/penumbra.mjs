@@ -48,12 +48,14 @@ export class Viewer {
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
   #adapt; #renderSize = [0, 0]; #fullSize = [0, 0]; #needsPresent = true;
   #haveImage = false;          // a complete frame at the current render size exists
+  #previewed = false;          // this view's first picture (the preview) was drawn
   #frameWorkMs = 0; #tiles = 0;  // time of the frame's parts so far; bands set in wasm
   #wasMoving = false; #refit = true;  // choose the still scale at the next still tick
   #raf = 0; #running = false; #disposed = false; #lost = false; #dead = null;
   #sceneInfo = null; #report = ''; #context = '';
-  #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, stepsPerTick: 0,
-             partsPerTick: 0, split: 1, parts: 1, restartedAt: 0, convergedMs: 0 };
+  #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, previewMs: 0,
+             stepsPerTick: 0, partsPerTick: 0, split: 1, parts: 1, restartedAt: 0,
+             convergedMs: 0 };
 
   static async create(canvas, options = {}) {
     if (!canvas || typeof canvas.getContext !== 'function') {
@@ -448,6 +450,7 @@ export class Viewer {
   }
 
   #restarted() {
+    this.#previewed = false;
     this.#stats.restartedAt = performance.now();
     this.#stats.converged = false;
     this.#frameWorkMs = 0;  // wasm drops a frame in progress on any restart
@@ -540,6 +543,19 @@ export class Viewer {
       this.#emit('camera', cam);
     }
     if (!this.#sceneInfo) return;  // nothing to show yet
+    // A view's first picture: frame 1 at the preview's size (a quarter of the pixels), shown at
+    // once and left out of the mean; the full frame 1 follows in the next animation frames.
+    // On a slow device it comes several times sooner than a whole frame 1 would.
+    if (!this.#haveImage && !this.#previewed && !moving && this.#pv.pv_frames_done() === 0) {
+      this.#previewed = true;
+      const start = performance.now();
+      this.#call('pv_preview');
+      this.#pv.pv_sync();
+      this.#stats.previewMs = performance.now() - start;
+      this.#haveImage = true;
+      this.#present(false);
+      return;
+    }
 
     let parts = 0, frames = 0;
     if (!this.#pv.pv_converged()) {

@@ -31,12 +31,28 @@ export async function fetchBytes(url) {
   try {
     response = await fetch(url);
   } catch (e) {
-    throw new PenumbraError(`cannot fetch ${url}: ${e && e.message ? e.message : e}`);
+    throw new PenumbraError(fetchFailure(url, e));
   }
   if (!response.ok) {
     throw new PenumbraError(`cannot fetch ${url}: HTTP ${response.status} ${response.statusText}`.trim());
   }
   return new Uint8Array(await response.arrayBuffer());
+}
+
+// Why a fetch rejected, in words. The browser says only "Failed to fetch" both for a network
+// failure and for a file of another site whose server does not allow this page (CORS; the real
+// reason is shown only in the developer tools), so for another site both are named, with the fix.
+export function fetchFailure(url, error) {
+  const why = error && error.message ? error.message : String(error);
+  let origin = null;
+  try {
+    const target = new URL(url, globalThis.location?.href);
+    if (globalThis.location && target.origin !== globalThis.location.origin) origin = target.origin;
+  } catch {}  // not a URL: the browser's message says so
+  if (!origin) return `cannot fetch ${url}: ${why}`;
+  return `cannot fetch ${url}: ${origin} is another site than this page, and its server did ` +
+         `not allow this page to read it (CORS: it must send Access-Control-Allow-Origin), or ` +
+         `the network failed; serve the file from this page's site or allow it there (${why})`;
 }
 
 // 'glb', 'gltf', 'scene' (a Penumbra scene file) or 'unknown', by content: dropped files and

@@ -539,6 +539,16 @@ EMSCRIPTEN_KEEPALIVE int pv_total_frames() {
 EMSCRIPTEN_KEEPALIVE int pv_converged() {
   return gViewer && gViewer->renderer && gViewer->renderer->converged() ? 1 : 0;
 }
+// The first picture of a view: frame 1 at the preview's scale (a quarter of the pixels),
+// upsampled into the image and shown; not part of the mean (Renderer::preview).
+EMSCRIPTEN_KEEPALIVE const char* pv_preview() {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (auto st = (*v)->renderer->preview(); !st) return errorJson(st.message());
+    return {{"ok", true}};
+  });
+}
 EMSCRIPTEN_KEEPALIVE void pv_restart() {
   if (gViewer && gViewer->renderer) gViewer->renderer->restart();
 }

@@ -53,7 +53,7 @@ const GI_BLOCK_MEAN_MIN = 0.01;
 // Regenerate it when the renderer's output changes on purpose.
 const GOLDEN = join(root, 'web/tests/golden/cornell_160_f16.png');
 
-let server, browser, page;
+let server, otherSite, browser, page;
 const consoleLines = [];
 const shared = {};  // pixels captured by one test for the next
 
@@ -70,12 +70,14 @@ before(async () => {
   }
   shared.reference = nativeReference();
   server = await serve(dist, { '/__reference.png': shared.reference.path });
+  otherSite = await serve(dist);  // another port: another origin, no CORS headers
   browser = await launch({ viewport: { width: SIZE, height: SIZE } });
 }, { timeout: 90_000 });
 
 after(async () => {
   if (browser) await browser.close();
   closeServer(server);
+  closeServer(otherSite);
 });
 
 const base = () => `http://127.0.0.1:${server.address().port}`;
@@ -260,7 +262,7 @@ test('orbit drag restarts accumulation, at lower resolution while moving', { tim
   });
 });
 
-test('a corrupt file, a failed fetch and a missing extension are reported; rendering goes on', { timeout: TEST_MS }, async () => {
+test('a corrupt file, a failed fetch, a file another site does not share (CORS) and a missing extension are reported; rendering goes on', { timeout: TEST_MS }, async () => {
   await step('errors', page, async () => {
     const before = await pageState(page);
     // Dropped on the page: a .glb header followed by garbage.
@@ -289,6 +291,13 @@ test('a corrupt file, a failed fetch and a missing extension are reported; rende
         badEnv: await outcome(v.setEnvironment(new Uint8Array([1, 2, 3]), { name: 'sky.hdr' })),
       };
     }, bad);
+    // A model on another site whose server sends no CORS header: the message names CORS and
+    // the fix, where the browser itself says only "Failed to fetch".
+    const foreign = `http://127.0.0.1:${otherSite.address().port}/assets/cornell_box/cornell_box.json`;
+    results.cors = await page.evaluate((url) => window.penumbraPage.viewer.loadScene(url)
+      .then(() => 'resolved', (e) => `${e.name}: ${e.message}`), foreign);
+    assert.match(results.cors, /^PenumbraError: cannot fetch .*cornell_box\.json: .* another site .*CORS: it must send Access-Control-Allow-Origin/);
+    assert.doesNotMatch(results.cors, /\n/);
     assert.match(results.corrupt, /^PenumbraError: broken\.glb/);
     assert.match(results.fetch, /^PenumbraError: cannot fetch .*no\/such\/scene\.glb: HTTP 404/);
     assert.match(results.env, /HTTP 404/);
