@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # penumbra-render --batch: every job of the file renders in one process, each image the same
 # bytes as a process of its own would write; a broken job is recorded as failed and the others
-# finish; the results file has one JSON line per job; a rerun skips outputs that exist (--force
-# renders them again); shards split the jobs round robin; the command line's options apply
-# under each line's; misuse is a one-line error.
+# finish; the results file has one JSON line per job; a job's "variant" renders as --variant; a
+# rerun skips outputs that exist (--force renders them again); shards split the jobs round
+# robin; the command line's options apply under each line's; misuse is a one-line error.
 # Usage: batch_cli.sh <dir of libpenumbra.a> <build dir>
 set -uo pipefail
 
@@ -64,6 +64,32 @@ for f in cornell grid cornell-studio glass; do
     fail "$f.png from the batch differs from a process of its own"
   fi
 done
+
+# A job's "variant" (KHR_materials_variants) as --variant: the material grid with a variant that
+# moves every sphere's material.
+mkdir -p "$WORK/variants"
+cp "$A/material_grid/material_grid.bin" "$WORK/variants/"
+python3 - "$A/material_grid/material_grid.gltf" "$WORK/variants/grid.gltf" <<'EOF2'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+n = len(doc["materials"])
+doc.setdefault("extensionsUsed", []).append("KHR_materials_variants")
+doc.setdefault("extensions", {})["KHR_materials_variants"] = {"variants": [{"name": "shifted"}]}
+for mesh in doc["meshes"]:
+    for p in mesh["primitives"]:
+        p.setdefault("extensions", {})["KHR_materials_variants"] = {
+            "mappings": [{"material": (p.get("material", 0) + 12) % n, "variants": [0]}]}
+json.dump(doc, open(sys.argv[2], "w"))
+EOF2
+echo "{\"scene\": \"$WORK/variants/grid.gltf\", \"output\": \"$WORK/variants/batch.png\", \"size\": \"48x32\", \"frames\": 4, \"variant\": \"shifted\"}" >"$WORK/variant.jsonl"
+"$TOOL" --batch "$WORK/variant.jsonl" -q || fail "the variant batch failed"
+single "$WORK/variants/grid.gltf" -o "$WORK/variants/single.png" --size 48x32 --frames 4 --variant shifted
+single "$WORK/variants/grid.gltf" -o "$WORK/variants/default.png" --size 48x32 --frames 4
+cmp -s "$WORK/variants/batch.png" "$WORK/variants/single.png" ||
+  fail "a batch job's variant differs from --variant"
+cmp -s "$WORK/variants/batch.png" "$WORK/variants/default.png" &&
+  fail "a batch job's variant is the default materials"
+echo "ok: a job's \"variant\" renders as --variant does"
 
 # A rerun skips what exists; --force renders again.
 before=$(stat -c %Y.%s "$WORK/out/grid.png")

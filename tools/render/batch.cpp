@@ -78,6 +78,7 @@ Status render(const BatchJob& job, Session& s, BatchResult& result) {
   Renderer& r = s.renderer;
   PN_TRY(r.setSettings(loaded->settings));
   PN_TRY(r.setScene(loaded->scene));
+  PN_TRY(r.setVariant(loaded->variant));
   // The same environment as the last job's stays on the GPU.
   if (loaded->environmentKey.empty() || loaded->environmentKey != s.uploadedEnvironment) {
     s.uploadedEnvironment.clear();
