@@ -13,8 +13,7 @@ A="$ROOT/assets"
 [ -x "$TOOL" ] || { echo "FAIL: $TOOL not built"; exit 1; }
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$ROOT/tests/support/cli_checks.sh"
 mkdir -p "$WORK/out" "$WORK/single" "$WORK/shard"
 
 # field FILE N KEY: KEY of the N-th (1-based) results line.
@@ -125,15 +124,6 @@ S0="$WORK/four.results.0-of-2.jsonl" S1="$WORK/four.results.1-of-2.jsonl"
 echo "ok: shards 0/2 and 1/2 rendered lines 1 3 and 2 4"
 
 # Misuse: one line on stderr, non-zero.
-expect_fail() {
-  local name="$1" fragment="$2"
-  shift 2
-  local err
-  if err=$("$TOOL" "$@" 2>&1 >/dev/null); then fail "$name: exited 0"; return; fi
-  grep -qF -- "$fragment" <<<"$err" || fail "$name: message '$err' lacks '$fragment'"
-  [ "$(grep -c . <<<"$err")" = 1 ] || fail "$name: more than one line: $err"
-  echo "ok: $name -> $err"
-}
 expect_fail "missing job file" "cannot read job file" --batch "$WORK/none.jsonl"
 expect_fail "batch and a scene" "no scene or -o" --batch "$JOBS" "$A/cornell_box/cornell_box.json"
 expect_fail "bad shard" "--shard must be I/N" --batch "$JOBS" --shard 2/2
@@ -143,8 +133,4 @@ expect_fail "no scene at all" "give a scene and -o"
 expect_fail "results folder missing" "cannot write results file" --batch "$JOBS" \
   --results "$WORK/nope/r.jsonl"
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all batch checks passed"
+finish "batch"

@@ -11,24 +11,7 @@ CORNELL="$ROOT/assets/cornell_box/cornell_box.json"
 [ -x "$TOOL" ] || { echo "FAIL: $TOOL not built"; exit 1; }
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect_fail NAME FRAGMENT ARGS...: non-zero exit, one line on stderr containing FRAGMENT.
-expect_fail() {
-  local name="$1" fragment="$2"
-  shift 2
-  local err
-  if err=$("$TOOL" "$@" 2>&1 >/dev/null); then
-    fail "$name: exited 0"
-    return
-  fi
-  if ! grep -qF -- "$fragment" <<<"$err"; then fail "$name: message '$err' lacks '$fragment'"; fi
-  local lines
-  lines=$(grep -c . <<<"$err")
-  if [ "$lines" != 1 ]; then fail "$name: $lines lines of error output: $err"; fi
-  echo "ok: $name -> $err"
-}
+. "$ROOT/tests/support/cli_checks.sh"
 
 printf '{"gltf": "nope.gltf"' >"$WORK/truncated.json"
 printf 'glTF\x02\x00\x00\x00\x10\x00\x00\x00' >"$WORK/short.glb"
@@ -102,8 +85,4 @@ out=$("$TOOL" "$ROOT/assets/cornell_box/cornell_box.gltf" -o "$WORK/bare.png" --
       --frames 2 --shadow-size 64 --info 2>&1) || fail "bare Cornell box exited non-zero"
 grep -qF "environment: none" <<<"$out" || fail "a scene with lights did not default to no environment"
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures failed"
-  exit 1
-fi
-echo "all render CLI checks passed"
+finish "render CLI"

@@ -76,16 +76,8 @@ Status render(const BatchJob& job, Session& s, BatchResult& result) {
   if (!loaded) return loaded.error();
   result.warnings = loaded->warnings;
   Renderer& r = s.renderer;
-  PN_TRY(r.setSettings(loaded->settings));
-  PN_TRY(r.setScene(loaded->scene));
-  PN_TRY(r.setVariant(loaded->variant));
   // The same environment as the last job's stays on the GPU.
-  if (loaded->environmentKey.empty() || loaded->environmentKey != s.uploadedEnvironment) {
-    s.uploadedEnvironment.clear();
-    PN_TRY(r.setEnvironment(loaded->environment));
-    s.uploadedEnvironment = loaded->environmentKey;
-  }
-  r.setCamera(loaded->camera);
+  PN_TRY(loaded->applyTo(r, &s.uploadedEnvironment));
   result.loadSeconds = secondsSince(start);
 
   const auto frames = Clock::now();

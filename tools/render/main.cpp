@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   if (!outDir.empty() && !fs::is_directory(outDir)) {
     return fail("output folder '" + outDir.string() + "' does not exist");
   }
-  if (!tools::isOutputPath(outPath)) {
+  if (!isImageOutputPath(outPath)) {
     return fail("output must end in .png, .exr or .hdr: " + outPath);
   }
 

@@ -13,10 +13,6 @@ bool hasExtension(const std::string& path, const char* ext) {
   return e == ext;
 }
 
-bool isOutputPath(const std::string& path) {
-  return hasExtension(path, ".png") || hasExtension(path, ".exr") || hasExtension(path, ".hdr");
-}
-
 Status writeOutput(const std::string& path, Renderer& renderer) {
   if (hasExtension(path, ".exr") || hasExtension(path, ".hdr")) {
     auto radiance = renderer.readRadiance();

@@ -10,7 +10,6 @@
 namespace penumbra::tools {
 
 bool hasExtension(const std::string& path, const char* ext);
-bool isOutputPath(const std::string& path);  // .png, .exr or .hdr
 Status writeOutput(const std::string& path, Renderer& renderer);
 
 }  // namespace penumbra::tools

@@ -21,6 +21,9 @@ struct BatchJob {
   std::string output;  // .png (displayed image), .exr or .hdr (linear radiance)
 };
 
+// True for the image outputs penumbra-render writes: .png, .exr or .hdr (any case).
+bool isImageOutputPath(const std::string& path);
+
 // "WxH" (or "WXH"), both positive.
 Result<std::pair<int, int>> parseSize(std::string_view text);
 

@@ -75,8 +75,10 @@ struct RenderJob {
   std::vector<std::string> warnings;  // the scene file's, then the glTF's
 
   static Result<RenderJob> load(const JobRequest& request);
-  // Sets settings, scene, environment and camera on a renderer.
-  Status applyTo(Renderer& renderer) const;
+  // Sets settings, scene (and variant), environment and camera on a renderer. With
+  // `environmentOnGpu` (the environmentKey of what the renderer holds, kept by the caller
+  // across jobs) an equal environment is not uploaded again.
+  Status applyTo(Renderer& renderer, std::string* environmentOnGpu = nullptr) const;
 };
 
 // Settings over a base, as the request's overrides are applied (schema keys and text).

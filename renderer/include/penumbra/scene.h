@@ -288,11 +288,14 @@ Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex);
 // Finds a KHR_materials_variants variant by name, or by index when `nameOrIndex` is a number;
 // "" or "default" is -1, the primitives' own materials.
 Result<int> findVariant(const Scene& scene, const std::string& nameOrIndex);
-// The material a primitive shows under `variant` (-1: its own).
+// The material shown under `variant` (-1: `own`) given the materials per variant.
+inline int variantMaterial(int own, const std::vector<int>& perVariant, int variant) {
+  return variant >= 0 && variant < static_cast<int>(perVariant.size())
+             ? perVariant[static_cast<size_t>(variant)]
+             : own;
+}
 inline int variantMaterial(const Primitive& p, int variant) {
-  return variant >= 0 && variant < static_cast<int>(p.variantMaterials.size())
-             ? p.variantMaterials[static_cast<size_t>(variant)]
-             : p.material;
+  return variantMaterial(p.material, p.variantMaterials, variant);
 }
 
 }  // namespace penumbra

@@ -1,6 +1,5 @@
 #include "penumbra/batch.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -8,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/image_internal.h"
 #include "penumbra/scene_file.h"
 #include "penumbra/settings.h"
 
@@ -100,13 +100,12 @@ Status applyOption(BatchJob& job, const std::string& key, const json& value) {
   return {};
 }
 
-bool endsWith(std::string s, const char* ext) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const std::string e(ext);
-  return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
-}
-
 }  // namespace
+
+bool isImageOutputPath(const std::string& path) {
+  const std::string e = detail::lowerExtension(path);
+  return e == ".png" || e == ".exr" || e == ".hdr";
+}
 
 Result<std::pair<int, int>> parseSize(std::string_view text) {
   int w = 0, h = 0;
@@ -133,8 +132,7 @@ Result<BatchJob> parseBatchJob(std::string_view text, int line, const JobRequest
   }
   if (job.request.scenePath.empty()) return makeError(lineError(line, "no \"scene\""));
   if (job.output.empty()) return makeError(lineError(line, "no \"output\""));
-  if (!endsWith(job.output, ".png") && !endsWith(job.output, ".exr") &&
-      !endsWith(job.output, ".hdr")) {
+  if (!isImageOutputPath(job.output)) {
     return makeError(lineError(line, "output must end in .png, .exr or .hdr: " + job.output));
   }
   return job;

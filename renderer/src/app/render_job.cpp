@@ -20,11 +20,21 @@ void EnvironmentCache::put(const std::string& key, Entry entry) {
   while (entries_.size() > capacity_) entries_.erase(entries_.begin());
 }
 
+namespace {
+
+// Kind::Default by the rule: black for a scene with lights of its own, else the studio.
+EnvironmentSpec::Kind resolvedKind(const EnvironmentSpec& spec, const Scene& scene) {
+  using Kind = EnvironmentSpec::Kind;
+  if (spec.kind != Kind::Default) return spec.kind;
+  return scene.lights.empty() ? Kind::Studio : Kind::None;
+}
+
+}  // namespace
+
 std::string environmentCacheKey(const EnvironmentSpec& spec, const Scene& scene,
                                 const EnvironmentLoadOptions& panorama) {
   using Kind = EnvironmentSpec::Kind;
-  Kind kind = spec.kind;
-  if (kind == Kind::Default) kind = scene.lights.empty() ? Kind::Studio : Kind::None;
+  const Kind kind = resolvedKind(spec, scene);
   char buf[160];
   switch (kind) {
     case Kind::None:
@@ -68,8 +78,7 @@ Result<PackedEnvironment> resolveEnvironment(const EnvironmentSpec& spec, const 
                                              const EnvironmentLoadOptions& panorama,
                                              std::string* name) {
   using Kind = EnvironmentSpec::Kind;
-  Kind kind = spec.kind;
-  if (kind == Kind::Default) kind = scene.lights.empty() ? Kind::Studio : Kind::None;
+  const Kind kind = resolvedKind(spec, scene);
   std::string label;
   Result<PackedEnvironment> env = makeError("no environment");
   switch (kind) {
@@ -192,11 +201,17 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   return job;
 }
 
-Status RenderJob::applyTo(Renderer& r) const {
+Status RenderJob::applyTo(Renderer& r, std::string* environmentOnGpu) const {
   PN_TRY(r.setSettings(settings));
   PN_TRY(r.setScene(scene));
   PN_TRY(r.setVariant(variant));
-  PN_TRY(r.setEnvironment(environment));
+  const bool same =
+      environmentOnGpu && !environmentKey.empty() && *environmentOnGpu == environmentKey;
+  if (!same) {
+    if (environmentOnGpu) environmentOnGpu->clear();  // unknown until the upload succeeds
+    PN_TRY(r.setEnvironment(environment));
+    if (environmentOnGpu) *environmentOnGpu = environmentKey;
+  }
   r.setCamera(camera);
   return {};
 }

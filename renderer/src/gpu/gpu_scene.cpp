@@ -144,9 +144,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
 
 void GpuScene::selectVariant(int variant) {
   for (auto& p : primitives_) {
-    p->material = variant >= 0 && variant < static_cast<int>(p->variantMaterials.size())
-                      ? p->variantMaterials[static_cast<size_t>(variant)]
-                      : p->ownMaterial;
+    p->material = variantMaterial(p->ownMaterial, p->variantMaterials, variant);
   }
   buildDrawItems();
 }
