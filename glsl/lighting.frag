@@ -188,13 +188,30 @@ void occlusionSamples(Layers L, inout vec3 irradiance, inout vec3 prefiltered,
 }
 #endif
 
+#if PN_DIFFUSE_TRANSMISSION
+// KHR_materials_diffuse_transmission: the irradiance arriving at the surface's other side:
+// the probe volume's where it answers (looked up for -n; the per-view probe cache holds only
+// the front's), else the environment's.
+vec3 backIrradiance(Layers L) {
+  vec3 e = envIrradiance(-L.n);
+#if !(PN_OCCLUSION && PN_PROBE_CACHE)
+  if (PN_PROBES != 0) {
+    vec4 room;
+    vec4 pv = probeIrradiance(vWorldPos, -L.n, L.v, -L.n, false, room);
+    if (pv.a > 1e-3) e = pv.rgb;
+  }
+#endif
+  return e;
+}
+#endif
+
 // The environment's light (split sum), with this frame's occlusion samples and the probe
 // volume's answer where they have one. skyLossWeight: 1 while the diffuse term is the
 // unoccluded E(n), which a sky-shadow sample corrects later; 0 once a ray or the probes
 // replaced it.
 vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
   vec3 irradiance = envIrradiance(L.n);
-  vec3 r = reflect(-L.v, L.n);
+  vec3 r = specularReflection(L.v, L.n);
   vec3 prefiltered = envRadiance(r, L.perceptualRoughness);
   bool diffuseHit = false, specularHit = false;
 #if PN_OCCLUSION
@@ -247,6 +264,10 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
                (L.sheenScale * (L.diffuseColor * irradiance * INV_PI +
                                 prefiltered * L.specularScale) +
                 L.sheenColor * (L.sheenE * INV_PI) * irradiance);
+#if PN_DIFFUSE_TRANSMISSION
+  // Diffuse transmission: the light arriving at the other side (no occlusion sample there).
+  color += L.baseScale * L.sheenScale * L.backColor * backIrradiance(L) * INV_PI;
+#endif
   if (L.coat > 0.0) {
     vec3 coatDfg = dfg(L.coatNoV, L.coatRoughness);
     vec3 coatPrefiltered = envRadiance(reflect(-L.v, L.coatN), L.coatRoughness);
@@ -263,7 +284,8 @@ void writeProbeCache(Layers L) {
   float showsRoom = max(L.specularScale.r, max(L.specularScale.g, L.specularScale.b)) *
                     (1.0 - L.perceptualRoughness);
   vec4 room;
-  vec4 pv = probeIrradiance(vWorldPos, L.n, L.v, reflect(-L.v, L.n), showsRoom > 0.01, room);
+  vec4 pv =
+      probeIrradiance(vWorldPos, L.n, L.v, specularReflection(L.v, L.n), showsRoom > 0.01, room);
   float key = probeCacheKey();
   cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
   cacheRoom = room;

@@ -49,12 +49,34 @@ vec3 areaShading(AreaLight A, Layers L) {
   vec3 coatSpecular = vec3(0.0);
   if (L.coat > 0.0) {
     float coatIrradiance;
+#if PN_ANISOTROPY
+    bool anisotropic = gAnisotropic;
+    gAnisotropic = false;  // the coat's lobe is isotropic
+#endif
     evaluateAreaLight(A, vWorldPos, L.coatN, L.v, vec3(0.04), 1.0, L.coatAlpha, coatIrradiance,
                       coatSpecular);
+#if PN_ANISOTROPY
+    gAnisotropic = anisotropic;
+#endif
   }
-  return L.baseScale * (L.sheenScale * (L.diffuseColor * irradiance * INV_PI + specular) +
+  vec3 back = vec3(0.0);
+#if PN_DIFFUSE_TRANSMISSION
+  // Diffuse transmission: the light's irradiance on the other side.
+  back = L.backColor * (areaLightIrradiance(A, vWorldPos, -L.n) * INV_PI);
+#endif
+  return L.baseScale * (L.sheenScale * (L.diffuseColor * irradiance * INV_PI + specular + back) +
                         L.sheenColor * (sheenLight * irradiance)) +
          L.coat * coatSpecular;
+}
+
+// The normal the shadow test offsets along: toward the light sample where the surface passes
+// light through to its other side (else the surface would shadow itself from behind).
+vec3 shadowNormal(vec3 toLight) {
+  vec3 n = normalize(vNormal);
+#if PN_DIFFUSE_TRANSMISSION
+  if (dot(n, toLight) < 0.0) n = -n;
+#endif
+  return n;
 }
 
 // The area-light samples, sorted by light: a light's unshadowed shading is the same for all of
@@ -72,7 +94,8 @@ vec3 areaTerm(Layers L) {
 #else
     if ((PN_AREA_STARTS & (1 << i)) != 0) shaded = areaShading(areaLightOf(i), L);
 #endif
-    float visibility = shadowVisibility(int(uAreaShape[i].w), vWorldPos, normalize(vNormal));
+    float visibility =
+        shadowVisibility(int(uAreaShape[i].w), vWorldPos, shadowNormal(uAreaPos[i] - vWorldPos));
     color += uAreaRadiance[i] * visibility * shaded;
   }
   return color;

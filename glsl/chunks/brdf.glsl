@@ -2,6 +2,43 @@
 // Fresnel (the glTF metallic-roughness model), and Lambert diffuse.
 const float MIN_PERCEPTUAL_ROUGHNESS = 0.045;  // keeps alpha^2 representable in mediump too
 
+#ifndef PN_ANISOTROPY
+#define PN_ANISOTROPY 0
+#endif
+#if PN_ANISOTROPY
+// KHR_materials_anisotropy: the base lobe's frame (the direction t, b = n x t), roughnesses
+// along t and b, and the bent normal its environment reflection uses, set once per pixel by
+// surfaceLayers (chunks/layers.glsl). specularBrdf() evaluates the anisotropic lobe while
+// gAnisotropic is set: the clearcoat's evaluations clear it around themselves.
+vec3 gAnisoT, gAnisoB, gBentNormal;
+float gAlphaT, gAlphaB;
+bool gAnisotropic = false;
+
+// Anisotropic GGX and its height-correlated Smith visibility (Heitz 2014; alpha_t along t).
+float D_GGXAnisotropic(float NoH, float ToH, float BoH, float at, float ab) {
+  float a2 = at * ab;
+  vec3 f = vec3(ab * ToH, at * BoH, a2 * NoH);
+  float w2 = a2 / max(dot(f, f), 1e-12);
+  return a2 * w2 * w2 / PI;
+}
+
+float V_SmithGGXCorrelatedAnisotropic(float NoV, float NoL, float ToV, float BoV, float ToL,
+                                      float BoL, float at, float ab) {
+  float ggxV = NoL * length(vec3(at * ToV, ab * BoV, NoV));
+  float ggxL = NoV * length(vec3(at * ToL, ab * BoL, NoL));
+  return 0.5 / max(ggxV + ggxL, 1e-7);
+}
+#endif
+
+// The reflection direction of the base's specular lobe (bent toward the anisotropy's
+// stretch where the material has one).
+vec3 specularReflection(vec3 v, vec3 n) {
+#if PN_ANISOTROPY
+  if (gAnisotropic) return reflect(-v, gBentNormal);
+#endif
+  return reflect(-v, n);
+}
+
 float D_GGX(float NoH, float alpha) {
   float a2 = alpha * alpha;
   float f = (NoH * a2 - NoH) * NoH + 1.0;
@@ -40,7 +77,7 @@ vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float
 // surfaces, not to the disk.
 vec3 diskSpecular(vec3 n, vec3 v, vec3 f0, float f90, float alpha, vec4 disk) {
   vec3 centre = -disk.xyz;
-  vec3 r = reflect(-v, n);
+  vec3 r = specularReflection(v, n);
   vec3 toRay = dot(centre, r) * r - centre;
   vec3 lr = normalize(centre + toRay * min(1.0, disk.w / max(length(toRay), 1e-6)));
   float widened = min(1.0, alpha + 0.5 * disk.w);
@@ -59,7 +96,66 @@ vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float
   float NoL = max(dot(n, l), 0.0);
   float NoH = max(dot(n, h), 0.0);
   float VoH = max(dot(v, h), 0.0);
+#if PN_ANISOTROPY
+  if (gAnisotropic) {
+    return D_GGXAnisotropic(NoH, dot(gAnisoT, h), dot(gAnisoB, h), gAlphaT, gAlphaB) * norm *
+           V_SmithGGXCorrelatedAnisotropic(NoV, NoL, dot(gAnisoT, v), dot(gAnisoB, v),
+                                           dot(gAnisoT, l), dot(gAnisoB, l), gAlphaT, gAlphaB) *
+           F_Schlick(f0, f90, VoH);
+  }
+#endif
   return D_GGX(NoH, alpha) * norm * V_SmithGGXCorrelated(NoV, NoL, alpha) * F_Schlick(f0, f90, VoH);
+}
+
+// KHR_materials_iridescence: the reflectance of a thin film (index filmIor, `thickness`
+// nanometres) over a base of normal reflectance baseF0, seen from air at cosTheta1. Belcour and
+// Barla's Airy summation (SIGGRAPH 2017): the film's two interfaces (Schlick), the phase shifts
+// at each, and the first two interference orders integrated against the CIE 1931 matching
+// functions, which their Gaussian fit makes a closed form (its constants below), then XYZ to
+// linear sRGB. The film's index fades to air's over its first nanometres, so a film of
+// thickness 0 leaves the base's Fresnel.
+const mat3 XYZ_TO_LINEAR_SRGB = mat3(3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108,
+                                     -0.2040259, -0.4985314, 0.0415560, 1.0572252);
+
+vec3 filmSensitivity(float opd, vec3 shift) {
+  float phase = 2.0 * PI * opd * 1e-9;
+  const vec3 val = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
+  const vec3 pos = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
+  const vec3 var = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
+  vec3 xyz = val * sqrt(2.0 * PI * var) * cos(pos * phase + shift) * exp(-phase * phase * var);
+  xyz.x += 9.7470e-14 * sqrt(2.0 * PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift.x) *
+           exp(-4.5282e+09 * phase * phase);
+  return XYZ_TO_LINEAR_SRGB * (xyz / 1.0685e-7);
+}
+
+vec3 thinFilmFresnel(float filmIor, float cosTheta1, float thickness, vec3 baseF0) {
+  float eta2 = mix(1.0, filmIor, smoothstep(0.0, 3.0, thickness));
+  float sin2Sq = (1.0 - cosTheta1 * cosTheta1) / (eta2 * eta2);
+  if (sin2Sq >= 1.0) return vec3(1.0);  // total internal reflection into the film
+  float cosTheta2 = sqrt(1.0 - sin2Sq);
+  // Air -> film.
+  float r0 = (eta2 - 1.0) / (eta2 + 1.0);
+  float R12 = F_Schlick(vec3(r0 * r0), cosTheta1).x;
+  float T121 = 1.0 - R12;
+  float phi21 = eta2 < 1.0 ? 0.0 : PI;  // the reflection inside the film toward air
+  // Film -> base, the base's index from its reflectance (seen from air).
+  vec3 s = sqrt(clamp(baseF0, vec3(0.0), vec3(0.9999)));
+  vec3 baseIor = (1.0 + s) / (1.0 - s);
+  vec3 r1 = (baseIor - eta2) / (baseIor + eta2);
+  vec3 R23 = F_Schlick(r1 * r1, cosTheta2);
+  vec3 phi23 = PI * (vec3(1.0) - step(vec3(eta2), baseIor));  // pi where the base is lower
+  float opd = 2.0 * eta2 * thickness * cosTheta2;
+  vec3 phi = vec3(phi21) + phi23;
+  // (No lower bound: without a first interface, R12 = 0, there is no film to interfere.)
+  vec3 R123 = min(R12 * R23, vec3(0.9999));
+  vec3 Rs = T121 * T121 * R23 / (vec3(1.0) - R123);
+  vec3 I = R12 + Rs;
+  vec3 Cm = Rs - T121;
+  for (int m = 1; m <= 2; ++m) {
+    Cm *= sqrt(R123);
+    I += Cm * 2.0 * filmSensitivity(float(m) * opd, float(m) * phi);
+  }
+  return clamp(I, vec3(0.0), vec3(1.0));  // the fit leaves a little out of gamut
 }
 
 // KHR_materials_sheen: Charlie's distribution with Estevez & Kulla's visibility, the same

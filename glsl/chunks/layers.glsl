@@ -23,7 +23,43 @@ struct Layers {
   float sheenE;
   float sheenScale;  // what the sheen lets through to the base
   vec3 transmitColor;  // KHR_materials_transmission (PN_TRANSMISSION only)
+  // KHR_materials_diffuse_transmission: what the diffuse base passes on to the other side
+  // (Lambertian): light arriving from behind the surface is scaled by it.
+  vec3 backColor;
 };
+
+#if PN_IRIDESCENCE
+// KHR_materials_iridescence: the film's Fresnel, evaluated once at n.v (as glTF's sample
+// viewer does), mixed with the base's by the strength; given to every term as the normal
+// reflectance whose Schlick curve passes through it at n.v, so the split sum, the lights and
+// the albedo scaling all see it.
+void applyIridescence(inout Layers L) {
+  vec2 film = iridescenceFactors();
+  if (film.x <= 0.0) return;
+  float c = pow(1.0 - L.NoV, 5.0);
+  vec3 fresnel = mix(F_Schlick(L.f0, L.f90, L.NoV),
+                     thinFilmFresnel(uIridescence.y, L.NoV, film.y, L.f0), film.x);
+  L.f0 = saturate((fresnel - L.f90 * c) / max(1.0 - c, 1e-3));
+}
+#endif
+
+#if PN_ANISOTROPY
+// KHR_materials_anisotropy: the lobe stretched along the direction (alpha_t from alpha to 1
+// with the strength squared) for specularBrdf(), and for the environment a normal bent toward
+// the stretch (the extension's sample implementation), less so on rough surfaces.
+void setAnisotropy(Layers L) {
+  vec3 an = anisotropyFactors();
+  gAnisotropic = an.z > 0.0;
+  gAnisoT = tangentDirection(L.n, an.xy);
+  gAnisoB = cross(L.n, gAnisoT);
+  gAlphaT = mix(L.alpha, 1.0, an.z * an.z);
+  gAlphaB = L.alpha;
+  vec3 anisotropicNormal = cross(cross(gAnisoB, L.v), gAnisoB);
+  if (dot(anisotropicNormal, anisotropicNormal) < 1e-8) anisotropicNormal = L.n;
+  float bend = pow(1.0 - an.z * (1.0 - L.perceptualRoughness), 4.0);
+  gBentNormal = normalize(mix(anisotropicNormal, L.n, bend));
+}
+#endif
 
 Layers surfaceLayers(SurfaceInputs s, vec3 v) {
   Layers L;
@@ -36,6 +72,9 @@ Layers surfaceLayers(SurfaceInputs s, vec3 v) {
   L.f90 = mix(dielectric.a, 1.0, s.metallic);
   L.perceptualRoughness = s.perceptualRoughness;
   L.alpha = s.perceptualRoughness * s.perceptualRoughness;
+#if PN_IRIDESCENCE
+  applyIridescence(L);
+#endif
   vec3 dfgTerms = dfg(L.NoV, s.perceptualRoughness);
   L.specularScale =
       (L.f0 * dfgTerms.x + L.f90 * dfgTerms.y) * (1.0 + L.f0 * (1.0 / dfgTerms.z - 1.0));
@@ -43,6 +82,17 @@ Layers surfaceLayers(SurfaceInputs s, vec3 v) {
   // reflect (albedo scaling with the directional specular albedo), so a white dielectric in a
   // white furnace reflects exactly the environment.
   L.diffuseColor *= vec3(1.0) - L.specularScale;
+  L.backColor = vec3(0.0);
+#if PN_DIFFUSE_TRANSMISSION
+  // KHR_materials_diffuse_transmission: of the dielectric base's diffuse share, `a` leaves
+  // through the other side with the transmission colour instead of the base colour.
+  vec4 dt = diffuseTransmissionFactors();
+  L.backColor = dt.rgb * dt.a * (1.0 - s.metallic) * (vec3(1.0) - L.specularScale);
+  L.diffuseColor *= 1.0 - dt.a;
+#endif
+#if PN_ANISOTROPY
+  setAnisotropy(L);
+#endif
   L.transmitColor = vec3(0.0);
 #if PN_TRANSMISSION
   // KHR_materials_transmission: of what the specular layer lets through, the share

@@ -13,6 +13,19 @@
 #define PN_ALPHA_MODE -1
 #define PN_BROAD_LOBE 0
 #endif
+// The later extensions' switches (lighting.frag's programs always define them).
+#ifndef PN_IRIDESCENCE
+#define PN_IRIDESCENCE 0
+#endif
+#ifndef PN_ANISOTROPY
+#define PN_ANISOTROPY 0
+#endif
+#ifndef PN_DIFFUSE_TRANSMISSION
+#define PN_DIFFUSE_TRANSMISSION 0
+#endif
+#ifndef PN_DISPERSION
+#define PN_DISPERSION 0
+#endif
 uniform vec4 uBaseColorFactor;
 uniform float uMetallicFactor;
 uniform float uRoughnessFactor;
@@ -43,6 +56,14 @@ uniform vec3 uAttenuationColor;
 // KHR_materials_specular's colour: ((ior - 1) / (ior + 1))^2 specularColorFactor, before the
 // clamp and the specular factor uDielectricF0 has applied (its texture multiplies in between).
 uniform vec3 uSpecularColorF0;
+// KHR_materials_dispersion: 20 / Abbe number (PN_DISPERSION only).
+uniform float uDispersion;
+// KHR_materials_iridescence: strength, the film's index, its thickness range (nm).
+uniform vec4 uIridescence;
+// KHR_materials_anisotropy: strength, cos and sin of the direction's rotation.
+uniform vec3 uAnisotropy;
+// KHR_materials_diffuse_transmission: colour (rgb) and the transmitted share (a).
+uniform vec4 uDiffuseTransmission;
 #ifndef PN_TEXTURE_SLOTS
 #error "PN_TEXTURE_SLOTS (passes/limits.h) is not defined"
 #endif
@@ -75,6 +96,11 @@ const int SLOT_SPECULAR = 10;
 const int SLOT_SPECULAR_COLOR = 11;
 const int SLOT_TRANSMISSION = 12;
 const int SLOT_THICKNESS = 13;
+const int SLOT_IRIDESCENCE = 14;
+const int SLOT_IRIDESCENCE_THICKNESS = 15;
+const int SLOT_ANISOTROPY = 16;
+const int SLOT_DIFFUSE_TRANSMISSION = 17;
+const int SLOT_DIFFUSE_TRANSMISSION_COLOR = 18;
 
 in vec3 vWorldPos;
 in vec3 vNormal;
@@ -221,4 +247,58 @@ float transmissionFactor() {
 // KHR_materials_volume: the thickness (mesh units; 0 thin-walled).
 float thicknessFactor() {
   return hasTexture(SLOT_THICKNESS) ? uThickness * layerTexel(SLOT_THICKNESS).g : uThickness;
+}
+
+// KHR_materials_iridescence: the film's strength (x) and thickness in nanometres (y): the
+// thickness texture's .g between the minimum and the maximum, else the maximum.
+vec2 iridescenceFactors() {
+  vec2 f = vec2(uIridescence.x, uIridescence.w);
+  if (hasTexture(SLOT_IRIDESCENCE)) f.x *= layerTexel(SLOT_IRIDESCENCE).r;
+  if (hasTexture(SLOT_IRIDESCENCE_THICKNESS)) {
+    f.y = mix(uIridescence.z, uIridescence.w, layerTexel(SLOT_IRIDESCENCE_THICKNESS).g);
+  }
+  return f;
+}
+
+// KHR_materials_anisotropy: the direction in tangent space (xy, unit length: the texture's .rg
+// in [-1, 1], else the tangent, turned counter-clockwise by the rotation) and the strength (z,
+// times the texture's .b).
+vec3 anisotropyFactors() {
+  vec3 a = vec3(1.0, 0.0, uAnisotropy.x);
+  if (hasTexture(SLOT_ANISOTROPY)) {
+    vec3 t = layerTexel(SLOT_ANISOTROPY).rgb;
+    a.xy = t.xy * 2.0 - 1.0;
+    a.z *= t.b;
+  }
+  float len = length(a.xy);
+  vec2 d = len > 1e-5 ? a.xy / len : vec2(1.0, 0.0);
+  return vec3(uAnisotropy.y * d.x - uAnisotropy.z * d.y, uAnisotropy.z * d.x + uAnisotropy.y * d.y,
+              saturate(a.z));
+}
+
+// The world direction of a tangent-space direction d on shading normal n (the vertex tangent
+// frame, negated on back faces as mappedNormal does), perpendicular to n.
+vec3 tangentDirection(vec3 n, vec2 d) {
+  vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
+  if (dot(t, t) <= 1e-10) {
+    vec3 a = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+    t = a - n * dot(n, a);
+  }
+  t = normalize(t);
+  vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+  if (!gl_FrontFacing) {
+    t = -t;
+    b = -b;
+  }
+  return normalize(t * d.x + b * d.y);
+}
+
+// KHR_materials_diffuse_transmission: colour (rgb) and the transmitted share (a).
+vec4 diffuseTransmissionFactors() {
+  vec4 f = uDiffuseTransmission;
+  if (hasTexture(SLOT_DIFFUSE_TRANSMISSION)) f.a *= layerTexel(SLOT_DIFFUSE_TRANSMISSION).a;
+  if (hasTexture(SLOT_DIFFUSE_TRANSMISSION_COLOR)) {
+    f.rgb *= srgbToLinear(layerTexel(SLOT_DIFFUSE_TRANSMISSION_COLOR).rgb);
+  }
+  return f;
 }

@@ -78,18 +78,34 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
     }
 #endif
     float NoL = dot(n, l);
+    vec3 shadowN = normalize(vNormal);
+#if PN_DIFFUSE_TRANSMISSION
+    // Light from behind passes through (diffuse transmission): offset the shadow test toward it.
+    if (dot(shadowN, l) < 0.0) shadowN = -shadowN;
+#else
     if (NoL <= 0.0 && (L.coat <= 0.0 || dot(L.coatN, l) <= 0.0)) continue;
-    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, normalize(vNormal));
+#endif
+    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, shadowN);
     vec3 e = uPunctualColor[i] * attenuation;
     vec3 base = L.diffuseColor * (max(NoL, 0.0) * INV_PI) +
                 punctualLobe(n, L.v, l, L.f0, L.f90, L.alpha, uPunctualDisk[i]);
+#if PN_DIFFUSE_TRANSMISSION
+    base += L.backColor * (max(-NoL, 0.0) * INV_PI);
+#endif
     if (L.sheenMax > 0.0) {
       base = L.sheenScale * base + L.sheenColor * sheenBrdfCos(n, L.v, l, L.sheenA);
     }
     color += e * L.baseScale * base;
     if (L.coat > 0.0) {
+#if PN_ANISOTROPY
+      bool anisotropic = gAnisotropic;
+      gAnisotropic = false;  // the coat's lobe is isotropic
+#endif
       color += e * L.coat *
                punctualLobe(L.coatN, L.v, l, vec3(0.04), 1.0, L.coatAlpha, uPunctualDisk[i]);
+#if PN_ANISOTROPY
+      gAnisotropic = anisotropic;
+#endif
     }
   }
   return color;

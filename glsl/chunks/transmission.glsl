@@ -21,16 +21,15 @@ uniform vec2 uViewportSize;  // the part of the targets this frame draws
 
 // Radiance arriving through the surface at p (unit normal n facing the viewer, toward-viewer
 // v), and its Beer-Lambert transmittance.
-vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
+// Through microfacet normal h, with index ior (thickness: the volume's, 0 thin-walled).
+vec3 radianceThrough(vec3 p, vec3 n, vec3 v, vec3 h, float ior, float thickness) {
   ivec2 here = ivec2(gl_FragCoord.xy);
   ivec2 size = ivec2(uViewportSize);  // of the copy, only this frame's drawn part
-  vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(gl_FragCoord.xy, 9.0), alpha);
   float ownDepth = -(uView * vec4(p, 1.0)).z;
   float behindDepth = uBehindDepthValid != 0 ? texelFetch(uPrepass, here, 0).w : -1.0;
   vec3 attenuation = vec3(1.0);
   vec3 start = p;  // where the ray leaves the surface (or the volume)
   vec3 dir;        // and its direction from there
-  float thickness = thicknessFactor();
   if (thickness > 0.0) {
     // The volume is taken for a sphere of diameter `thickness` (world units: the factor times
     // the item's scale) entered here: the chord shortens toward the silhouette, and the ray
@@ -77,4 +76,21 @@ vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
     }
   }
   return texelFetch(uBehind, q, 0).rgb * attenuation;
+}
+
+vec3 transmittedRadiance(vec3 p, vec3 n, vec3 v, float alpha, float ior) {
+  vec3 h = tangentFrame(n) * sampleGgxHalfVector(pixelSample(gl_FragCoord.xy, 9.0), alpha);
+  float thickness = thicknessFactor();
+#if PN_DISPERSION
+  // KHR_materials_dispersion: red and blue refract with indices (ior - 1) * 0.025 * dispersion
+  // below and above ior (the extension's three-index model of the Abbe number), each channel
+  // from its own ray, all three every frame (a channel a frame would tint the first picture).
+  if (thickness > 0.0) {
+    float spread = (ior - 1.0) * 0.025 * uDispersion;
+    return vec3(radianceThrough(p, n, v, h, ior - spread, thickness).r,
+                radianceThrough(p, n, v, h, ior, thickness).g,
+                radianceThrough(p, n, v, h, ior + spread, thickness).b);
+  }
+#endif
+  return radianceThrough(p, n, v, h, ior, thickness);
 }

@@ -261,7 +261,7 @@ TEST(SceneGltfExtensions, RequiredUnknownExtensionIsAnError) {
 TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   GltfBuilder b;
   b.useExtension("EXT_fancy_thing");
-  b.useExtension("KHR_materials_anisotropy");
+  b.useExtension("KHR_materials_pbrSpecularGlossiness");
   b.useExtension("KHR_materials_transmission");
   b.useExtension("KHR_materials_volume");
   b.useExtension("KHR_materials_sheen");
@@ -271,7 +271,7 @@ TEST(SceneGltfExtensions, OptionalUnknownExtensionsWarn) {
   auto scene = b.load();
   ASSERT_TRUE(scene.ok()) << scene.message();
   EXPECT_TRUE(hasWarning(*scene, "uses unsupported extension EXT_fancy_thing"));
-  EXPECT_TRUE(hasWarning(*scene, "uses KHR_materials_anisotropy, which is ignored"));
+  EXPECT_TRUE(hasWarning(*scene, "uses KHR_materials_pbrSpecularGlossiness, which is ignored"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_transmission"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_volume"));
   EXPECT_FALSE(hasWarning(*scene, "KHR_materials_clearcoat"));

@@ -435,7 +435,8 @@ TEST(SceneGltfMaterial, ExtensionTexturesShareOneSamplerWithAWarningWhenTheyDiff
     EXPECT_NE(std::string(info.path).find("Texture"), std::string::npos) << info.path;
     srgb += info.srgb ? 1 : 0;
   }
-  EXPECT_EQ(srgb, 4) << "base colour, emissive, sheen colour, specular colour";
+  EXPECT_EQ(srgb, 5) << "base colour, emissive, sheen colour, specular colour, diffuse "
+                        "transmission colour";
 }
 
 }  // namespace

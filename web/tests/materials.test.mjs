@@ -6,7 +6,9 @@
 // which the browser transcodes to RGBA8 because every one of them is an extension texture,
 // renders like the PNGs. KHR_materials_variants: the material grid with a variant that moves
 // every sphere's material lists its variant, switches to it with setVariant and renders like
-// native penumbra-render --variant.
+// native penumbra-render --variant. The later extensions' scene (assets/extensions:
+// iridescence, anisotropy, diffuse transmission, dispersion) and a model of 125 instances
+// (EXT_mesh_gpu_instancing) load without a warning and render like native.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -33,7 +35,7 @@ const KTX2_BLOCK_MAX_TOL = 0.03;
 
 let server, browser;
 const consoleLines = [];
-let reference, variantReference;
+let reference, variantReference, extensionsReference, instancing;
 
 // The material grid with one variant, "shifted", that gives each sphere the material twelve
 // places on (the grid's own .bin beside it), and its native render with --variant shifted.
@@ -65,6 +67,47 @@ function variantGrid() {
   return { gltf, png };
 }
 
+// One sphere of the material grid drawn 125 times (5 x 5 x 5, EXT_mesh_gpu_instancing
+// translations in a second buffer), and its native render.
+function instancedSpheres() {
+  const dir = join(outDir, 'instancing');
+  mkdirSync(dir, { recursive: true });
+  const src = join(root, 'assets/material_grid');
+  const doc = JSON.parse(readFileSync(join(src, 'material_grid.gltf'), 'utf8'));
+  const t = new Float32Array(125 * 3);
+  for (let i = 0; i < 125; ++i) {
+    t.set([(i % 5 - 2) * 1.0, 0.5 + Math.floor(i / 5) % 5 * 1.0, -Math.floor(i / 25) * 1.0], i * 3);
+  }
+  const bytes = Buffer.from(t.buffer);
+  doc.buffers.push({ byteLength: bytes.length,
+                     uri: `data:application/octet-stream;base64,${bytes.toString('base64')}` });
+  doc.bufferViews.push({ buffer: doc.buffers.length - 1, byteLength: bytes.length });
+  doc.accessors.push({ bufferView: doc.bufferViews.length - 1, componentType: 5126, count: 125,
+                       type: 'VEC3' });
+  const sphere = doc.nodes.findIndex((n) => n.mesh !== undefined && n.name.startsWith('sphere'));
+  const node = { ...doc.nodes[sphere], translation: [0, 0, 0],
+                 extensions: { EXT_mesh_gpu_instancing: {
+                   attributes: { TRANSLATION: doc.accessors.length - 1 } } } };
+  const floor = doc.nodes.findIndex((n) => n.name === 'floor');
+  doc.nodes = [node, doc.nodes[floor]];
+  doc.scenes = [{ nodes: [0, 1] }];
+  doc.scene = 0;
+  delete doc.cameras;
+  doc.extensionsUsed = [...(doc.extensionsUsed || []), 'EXT_mesh_gpu_instancing'];
+  const gltf = join(dir, 'instanced.gltf');
+  writeFileSync(gltf, JSON.stringify(doc));
+  copyFileSync(join(src, 'material_grid.bin'), join(dir, 'material_grid.bin'));
+  const png = join(outDir, 'native-instanced.png');
+  const bin = join(root, 'build/tools/render/penumbra-render');
+  if (!existsSync(bin)) return { gltf, png: null };
+  const r = spawnSync(bin, [gltf, '-o', png, '--size', `${WIDTH}x${HEIGHT}`, '--frames',
+                            String(FRAMES), '-q'],
+                      { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
+                        timeout: 60_000, encoding: 'utf8' });
+  assert.equal(r.status, 0, `penumbra-render of the instanced model failed: ${r.stderr}`);
+  return { gltf, png };
+}
+
 before(async () => {
   mkdirSync(outDir, { recursive: true });
   reference = nativeRender('assets/layers/layers.json', WIDTH, HEIGHT, FRAMES,
@@ -73,6 +116,12 @@ before(async () => {
   variantReference = variantGrid();
   extra['/assets/material_grid/variants.gltf'] = variantReference.gltf;
   if (variantReference.png) extra['/__variant.png'] = variantReference.png;
+  extensionsReference = nativeRender('assets/extensions/extensions.json', WIDTH, HEIGHT, FRAMES,
+                                     'native-extensions.png', null, consoleLines);
+  if (extensionsReference) extra['/__extensions.png'] = extensionsReference.path;
+  instancing = instancedSpheres();
+  extra['/assets/material_grid/instanced.gltf'] = instancing.gltf;
+  if (instancing.png) extra['/__instanced.png'] = instancing.png;
   server = await serve(dist, extra);
   browser = await launch({ viewport: { width: WIDTH, height: HEIGHT } });
 }, { timeout: 90_000 });
@@ -174,4 +223,36 @@ test('KHR_materials_variants: the variant is listed, selected by setVariant, and
   } finally {
     await pg.close().catch(() => {});
   }
+});
+
+// The canvas of `scene` against the native render served at `refUrl` (null: not built).
+async function likeNative(scene, shot, refUrl, what) {
+  const r = await render(scene, shot);
+  try {
+    assert.deepEqual(r.warnings, [], `${what} loads without a warning`);
+    if (!refUrl) {
+      console.log(`# no native penumbra-render built: ${what} not compared`);
+      return r.canvas;
+    }
+    const ref = await pixels(r.pg, refUrl);
+    const d = diff(r.canvas, ref);
+    const b = diff(blocks(r.canvas, 8), blocks(ref, 8));
+    console.log(`# ${what}: canvas vs native: pixels ${fmt(d)}; 8x8 blocks ${fmt(b)}`);
+    assert.ok(d.mean <= NATIVE_MEAN_TOL, `pixels: mean > ${NATIVE_MEAN_TOL} (${fmt(d)})`);
+    assert.ok(b.mean <= NATIVE_BLOCK_MEAN_TOL, `blocks: mean > ${NATIVE_BLOCK_MEAN_TOL} (${fmt(b)})`);
+    assert.ok(b.max <= NATIVE_BLOCK_MAX_TOL, `blocks: max > ${NATIVE_BLOCK_MAX_TOL} (${fmt(b)})`);
+    return r.canvas;
+  } finally {
+    await r.pg.close().catch(() => {});
+  }
+}
+
+test('iridescence, anisotropy, diffuse transmission and dispersion render like native', { timeout: TEST_MS }, async () => {
+  await likeNative('assets/extensions/extensions.json', 'extensions.png',
+                   extensionsReference && '/__extensions.png', 'the extensions scene');
+});
+
+test('EXT_mesh_gpu_instancing: 125 instances of one mesh render like native', { timeout: TEST_MS }, async () => {
+  await likeNative('assets/material_grid/instanced.gltf', 'instanced.png',
+                   instancing.png && '/__instanced.png', 'the instanced model');
 });

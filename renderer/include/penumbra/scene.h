@@ -89,17 +89,22 @@ enum class TextureSlot : int {
   Normal,
   Occlusion,
   Emissive,
-  ClearcoatNormal,     // KHR_materials_clearcoat: the coat's own normal map
-  Clearcoat,           // .r scales clearcoatFactor
-  ClearcoatRoughness,  // .g scales clearcoatRoughnessFactor
-  SheenColor,          // KHR_materials_sheen: .rgb (sRGB) scales sheenColorFactor
-  SheenRoughness,      // .a scales sheenRoughnessFactor
-  Specular,            // KHR_materials_specular: .a scales specularFactor
-  SpecularColor,       // .rgb (sRGB) scales specularColorFactor
-  Transmission,        // KHR_materials_transmission: .r scales transmissionFactor
-  Thickness,           // KHR_materials_volume: .g scales thicknessFactor
+  ClearcoatNormal,           // KHR_materials_clearcoat: the coat's own normal map
+  Clearcoat,                 // .r scales clearcoatFactor
+  ClearcoatRoughness,        // .g scales clearcoatRoughnessFactor
+  SheenColor,                // KHR_materials_sheen: .rgb (sRGB) scales sheenColorFactor
+  SheenRoughness,            // .a scales sheenRoughnessFactor
+  Specular,                  // KHR_materials_specular: .a scales specularFactor
+  SpecularColor,             // .rgb (sRGB) scales specularColorFactor
+  Transmission,              // KHR_materials_transmission: .r scales transmissionFactor
+  Thickness,                 // KHR_materials_volume: .g scales thicknessFactor
+  Iridescence,               // KHR_materials_iridescence: .r scales iridescenceFactor
+  IridescenceThickness,      // .g: thickness from minimum (0) to maximum (1)
+  Anisotropy,                // KHR_materials_anisotropy: .rg direction, .b scales the strength
+  DiffuseTransmission,       // KHR_materials_diffuse_transmission: .a scales the factor
+  DiffuseTransmissionColor,  // .rgb (sRGB) scales the colour factor
 };
-inline constexpr int kTextureSlotCount = 14;
+inline constexpr int kTextureSlotCount = 19;
 inline constexpr int kCoreTextureSlots = 5;  // BaseColor..Emissive: a texture unit each
 
 struct Material {
@@ -139,6 +144,23 @@ struct Material {
   float thickness = 0.0f;
   float attenuationDistance = 0.0f;
   glm::vec3 attenuationColor{1.0f};
+  // KHR_materials_dispersion: 20 / Abbe number (0: none); spreads the volume's refraction over
+  // three indices, (ior - 1) * 0.025 * dispersion either side of ior for red and blue.
+  float dispersion = 0.0f;
+  // KHR_materials_iridescence: a thin film over the base (strength; the film's index; its
+  // thickness in nanometres, from the texture's .g between minimum and maximum, else maximum).
+  float iridescence = 0.0f;
+  float iridescenceIor = 1.3f;
+  float iridescenceThicknessMin = 100.0f;
+  float iridescenceThicknessMax = 400.0f;
+  // KHR_materials_anisotropy: strength in [0, 1] (stretches the specular lobe along the
+  // direction), and the direction's rotation from the tangent (radians, counter-clockwise).
+  float anisotropy = 0.0f;
+  float anisotropyRotation = 0.0f;
+  // KHR_materials_diffuse_transmission: the share of the diffuse base's light that leaves
+  // through the other side (Lambertian), and the colour it takes on.
+  float diffuseTransmission = 0.0f;
+  glm::vec3 diffuseTransmissionColor{1.0f};
   // The KHR_materials_* extensions' textures (TextureSlot::ClearcoatNormal and after but the
   // normal map, which has its own field above), each scaling its factor.
   TextureRef clearcoatTexture;
@@ -149,6 +171,11 @@ struct Material {
   TextureRef specularColorTexture;
   TextureRef transmissionTexture;
   TextureRef thicknessTexture;
+  TextureRef iridescenceTexture;
+  TextureRef iridescenceThicknessTexture;
+  TextureRef anisotropyTexture;
+  TextureRef diffuseTransmissionTexture;
+  TextureRef diffuseTransmissionColorTexture;
   // The dielectric reflectance at normal incidence the shader uses:
   // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular (0.04 by default).
   glm::vec3 dielectricF0() const;

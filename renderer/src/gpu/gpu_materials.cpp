@@ -2,6 +2,7 @@
 // shared between materials), their extension textures as one texture array per material
 // (gpu_scene.h says why), the features the shading programs are specialised on, and binding.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "gpu/gpu_scene.h"
@@ -230,6 +231,12 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uAttenuationDistance", m.attenuationDistance);
   program.set("uAttenuationColor", m.attenuationColor);
   program.set("uClearcoatNormalScale", m.clearcoatNormalScale);
+  program.set("uDispersion", m.dispersion);
+  program.set("uIridescence", glm::vec4(m.iridescence, m.iridescenceIor, m.iridescenceThicknessMin,
+                                        m.iridescenceThicknessMax));
+  program.set("uAnisotropy", glm::vec3(m.anisotropy, std::cos(m.anisotropyRotation),
+                                       std::sin(m.anisotropyRotation)));
+  program.set("uDiffuseTransmission", glm::vec4(m.diffuseTransmissionColor, m.diffuseTransmission));
   static const char* const kSamplers[kCoreTextureSlots] = {
       "uBaseColorTex", "uMetallicRoughnessTex", "uNormalTex", "uOcclusionTex", "uEmissiveTex"};
   int textureMask = 0;
@@ -269,6 +276,11 @@ uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSl
     f |= kFeatureSheen;
   }
   if (m.unlit) f |= kFeatureUnlit;
+  // The later extensions (their textures only scale their factors: a factor of 0 is off).
+  if (m.iridescence > 0.0f) f |= kFeatureIridescence;
+  if (m.anisotropy > 0.0f) f |= kFeatureAnisotropy;
+  if (m.diffuseTransmission > 0.0f && m.transmission <= 0.0f) f |= kFeatureDiffuseTransmission;
+  if (m.dispersion > 0.0f && m.transmission > 0.0f && m.thickness > 0.0f) f |= kFeatureDispersion;
   f |= static_cast<uint32_t>(m.alphaMode) << kFeatureAlphaShift;
   const bool mrTexture = hasTexture[static_cast<int>(TextureSlot::MetallicRoughness)];
   // A broad specular lobe on a dielectric (its share of the light is a few per cent): the
@@ -296,7 +308,11 @@ gl::Defines materialDefines(uint32_t features) {
           {"PN_SHEEN", flag(kFeatureSheen)},
           {"PN_UNLIT", flag(kFeatureUnlit)},
           {"PN_ALPHA_MODE", std::to_string((features >> kFeatureAlphaShift) & 3u)},
-          {"PN_BROAD_LOBE", flag(kFeatureBroadLobe)}};
+          {"PN_BROAD_LOBE", flag(kFeatureBroadLobe)},
+          {"PN_IRIDESCENCE", flag(kFeatureIridescence)},
+          {"PN_ANISOTROPY", flag(kFeatureAnisotropy)},
+          {"PN_DIFFUSE_TRANSMISSION", flag(kFeatureDiffuseTransmission)},
+          {"PN_DISPERSION", flag(kFeatureDispersion)}};
 }
 
 }  // namespace penumbra

@@ -32,7 +32,8 @@ struct GpuPrimitive {
 
 // A material's textures. The five core slots (TextureSlot::BaseColor..Emissive) are 2D
 // textures on units 0..4, shared between materials and possibly block-compressed. The
-// extension slots (clearcoat, sheen, specular, transmission, volume) are layers of one RGBA8
+// extension slots (clearcoat, sheen, specular, transmission, volume, iridescence,
+// anisotropy, diffuse transmission) are layers of one RGBA8
 // texture array per material on TextureUnit::MaterialLayers: all of them cost one unit, which
 // is what lets every KHR_materials_* texture be sampled within WebGL2's 16 (the environment,
 // shadows, probes and caches take the other ten). Layers share the array's size, the largest
@@ -44,7 +45,8 @@ struct GpuMaterial {
   // Core slots' textures; null = none.
   const gl::Texture2D* textures[kCoreTextureSlots] = {};
   // Extension slots' layers in `layers` (-1: none), indexed by TextureSlot.
-  int layer[kTextureSlotCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  int layer[kTextureSlotCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+                                  -1, -1, -1, -1, -1, -1, -1, -1, -1};
   gl::Texture2DArray layers;
   // What the material uses (materialFeatures): the shading programs are specialised on it.
   uint32_t features = 0;
@@ -52,13 +54,15 @@ struct GpuMaterial {
 
 // A material's features as bits: its texture slots (bit i: TextureSlot i), the layers it has,
 // its alpha mode (kFeatureAlphaShift, 2 bits), a broad specular lobe on a dielectric (roughness
-// 0.75 or more, metallic under 0.5, no metallic-roughness texture), and lobes rough enough for
-// the area lights' per-view cache.
+// 0.75 or more, metallic under 0.5, no metallic-roughness texture), lobes rough enough for
+// the area lights' per-view cache, and the later KHR_materials_* extensions it uses.
 inline constexpr uint32_t kFeatureTextures = (1u << kTextureSlotCount) - 1;
-inline constexpr uint32_t kFeatureClearcoat = 1u << 14, kFeatureSheen = 1u << 15,
-                          kFeatureUnlit = 1u << 16, kFeatureAlphaShift = 17,
-                          kFeatureBroadLobe = 1u << 19, kFeatureLightCacheable = 1u << 20;
-static_assert(kTextureSlotCount == 14, "the feature bits after the slots move with them");
+inline constexpr uint32_t kFeatureClearcoat = 1u << 19, kFeatureSheen = 1u << 20,
+                          kFeatureUnlit = 1u << 21, kFeatureAlphaShift = 22,
+                          kFeatureBroadLobe = 1u << 24, kFeatureLightCacheable = 1u << 25,
+                          kFeatureIridescence = 1u << 26, kFeatureAnisotropy = 1u << 27,
+                          kFeatureDiffuseTransmission = 1u << 28, kFeatureDispersion = 1u << 29;
+static_assert(kTextureSlotCount == 19, "the feature bits after the slots move with them");
 inline constexpr float kLightCacheMinRoughness = 0.3f;
 uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSlotCount]);
 // The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:

@@ -17,16 +17,28 @@ namespace {
 using gltf::Document;
 using gltf::LoadContext;
 
-constexpr std::array<std::string_view, 17> kSupportedExtensions = {
-    "KHR_texture_transform",      "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",        "EXT_lights_area",
-    "KHR_mesh_quantization",      "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression",    "KHR_materials_ior",
-    "KHR_materials_specular",     "KHR_materials_unlit",
-    "KHR_materials_clearcoat",    "KHR_materials_sheen",
-    "KHR_materials_transmission", "KHR_materials_volume",
-    "KHR_texture_basisu",         "EXT_mesh_gpu_instancing",
+constexpr std::array<std::string_view, 21> kSupportedExtensions = {
+    "KHR_texture_transform",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+    "EXT_lights_area",
+    "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_materials_ior",
+    "KHR_materials_specular",
+    "KHR_materials_unlit",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
+    "KHR_materials_transmission",
+    "KHR_materials_volume",
+    "KHR_texture_basisu",
+    "EXT_mesh_gpu_instancing",
     "KHR_materials_variants",
+    "KHR_materials_dispersion",
+    "KHR_materials_iridescence",
+    "KHR_materials_anisotropy",
+    "KHR_materials_diffuse_transmission",
 };
 
 bool isSupported(const std::string& ext) {
@@ -47,7 +59,8 @@ Status checkExtensions(const Document& doc, LoadContext& ctx) {
     if (ext.rfind("KHR_materials_", 0) == 0) {
       ctx.warn("uses " + ext +
                ", which is ignored (the metallic-roughness model with emissive_strength, ior, "
-               "specular, clearcoat, sheen, transmission, volume and unlit is supported)");
+               "specular, clearcoat, sheen, transmission, volume, unlit, iridescence, "
+               "anisotropy, diffuse_transmission and dispersion is supported)");
     } else {
       ctx.warn("uses unsupported extension " + ext + " (ignored)");
     }

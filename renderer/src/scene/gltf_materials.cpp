@@ -48,6 +48,17 @@ constexpr SlotEntry kSlots[kTextureSlotCount] = {
      {"extensions.KHR_materials_transmission.transmissionTexture", false, false}},
     {&Material::thicknessTexture,
      {"extensions.KHR_materials_volume.thicknessTexture", false, false}},
+    {&Material::iridescenceTexture,
+     {"extensions.KHR_materials_iridescence.iridescenceTexture", false, false}},
+    {&Material::iridescenceThicknessTexture,
+     {"extensions.KHR_materials_iridescence.iridescenceThicknessTexture", false, false}},
+    {&Material::anisotropyTexture,
+     {"extensions.KHR_materials_anisotropy.anisotropyTexture", false, false}},
+    {&Material::diffuseTransmissionTexture,
+     {"extensions.KHR_materials_diffuse_transmission.diffuseTransmissionTexture", false, false}},
+    {&Material::diffuseTransmissionColorTexture,
+     {"extensions.KHR_materials_diffuse_transmission.diffuseTransmissionColorTexture", true,
+      false}},
 };
 }  // namespace
 

@@ -175,23 +175,23 @@ Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& pr
     }
   }
 
-  // Tangents for the normal map, else for the clearcoat's own normal map.
-  size_t mappedSlot = 0;
-  bool normalMapped = false;
+  // Tangents for the normal map, else for the clearcoat's own normal map, else for the
+  // anisotropy's direction (its texture's UV set, or TEXCOORD_0: the direction is given
+  // relative to the tangent even without a texture).
+  int uvSet = -1;
   if (pd.material >= 0) {
-    const auto& tex = doc.materials[static_cast<size_t>(pd.material)].textures;
-    for (TextureSlot slot : {TextureSlot::Normal, TextureSlot::ClearcoatNormal}) {
-      if (!normalMapped && tex[slotIndex(slot)].texture >= 0) {
-        mappedSlot = slotIndex(slot);
-        normalMapped = true;
-      }
+    const MaterialDesc& md = doc.materials[static_cast<size_t>(pd.material)];
+    for (TextureSlot slot :
+         {TextureSlot::Normal, TextureSlot::ClearcoatNormal, TextureSlot::Anisotropy}) {
+      if (uvSet < 0 && md.textures[slotIndex(slot)].texture >= 0)
+        uvSet = md.textures[slotIndex(slot)].texCoord;
     }
+    if (uvSet < 0 && md.material.anisotropy > 0.0f) uvSet = 0;
   }
-  if (normalMapped && prim.tangents.empty()) {
-    const int uvSet = doc.materials[static_cast<size_t>(pd.material)].textures[mappedSlot].texCoord;
+  if (uvSet >= 0 && prim.tangents.empty()) {
     const auto& uv = uvSet == 0 ? prim.uv0 : prim.uv1;
     if (uvSet > 1 || uv.empty()) {
-      ctx.warn(what + ": the normal map uses TEXCOORD_" + std::to_string(uvSet) +
+      ctx.warn(what + ": the normal map (or anisotropy) uses TEXCOORD_" + std::to_string(uvSet) +
                ", which the primitive does not have; tangents are arbitrary");
     }
     PN_TRY(ctx.reserve(prim.positions.size() * 16, what + " generated tangents"));

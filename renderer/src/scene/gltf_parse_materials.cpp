@@ -139,6 +139,61 @@ void parseTransmission(Parser& p, const json& ext, const std::string& path, Mate
   }
 }
 
+// A factor in [0, 1], clamped with a warning naming its path.
+float unitFactor(Parser& p, const json& e, const std::string& ep, const char* name, double def,
+                 LoadContext& ctx) {
+  const double f = p.number(e, name, ep, def);
+  if (f < 0.0 || f > 1.0) ctx.warn(ep + "." + name + ": outside [0, 1]; clamped");
+  return static_cast<float>(std::clamp(f, 0.0, 1.0));
+}
+
+// KHR_materials_dispersion, KHR_materials_iridescence, KHR_materials_anisotropy and
+// KHR_materials_diffuse_transmission: factors and textures.
+void parseLaterExtensions(Parser& p, const json& ext, const std::string& path, MaterialDesc& md,
+                          LoadContext& ctx, size_t textureCount) {
+  Material& m = md.material;
+  if (const json* e = p.object(ext, "KHR_materials_dispersion", path)) {
+    const std::string ep = path + ".KHR_materials_dispersion";
+    const double d = p.number(*e, "dispersion", ep, 0.0);
+    if (!(d >= 0.0) || !std::isfinite(d)) ctx.warn(ep + ".dispersion: negative; using 0");
+    m.dispersion = d >= 0.0 && std::isfinite(d) ? static_cast<float>(d) : 0.0f;
+  }
+  if (const json* e = p.object(ext, "KHR_materials_iridescence", path)) {
+    const std::string ep = path + ".KHR_materials_iridescence";
+    m.iridescence = unitFactor(p, *e, ep, "iridescenceFactor", 0.0, ctx);
+    const double ior = p.number(*e, "iridescenceIor", ep, 1.3);
+    if (!(ior >= 1.0)) ctx.warn(ep + ".iridescenceIor: below 1; using 1");
+    m.iridescenceIor = ior >= 1.0 && std::isfinite(ior) ? static_cast<float>(ior) : 1.0f;
+    const double lo = p.number(*e, "iridescenceThicknessMinimum", ep, 100.0);
+    const double hi = p.number(*e, "iridescenceThicknessMaximum", ep, 400.0);
+    if (!(lo >= 0.0) || !(hi >= 0.0)) ctx.warn(ep + ": negative film thickness; using 0");
+    m.iridescenceThicknessMin = static_cast<float>(std::max(lo, 0.0));
+    m.iridescenceThicknessMax = static_cast<float>(std::max(hi, 0.0));
+    extensionTexture(p, *e, ep, "iridescenceTexture", TextureSlot::Iridescence, md, textureCount);
+    extensionTexture(p, *e, ep, "iridescenceThicknessTexture", TextureSlot::IridescenceThickness,
+                     md, textureCount);
+  }
+  if (const json* e = p.object(ext, "KHR_materials_anisotropy", path)) {
+    const std::string ep = path + ".KHR_materials_anisotropy";
+    m.anisotropy = unitFactor(p, *e, ep, "anisotropyStrength", 0.0, ctx);
+    m.anisotropyRotation = static_cast<float>(p.number(*e, "anisotropyRotation", ep, 0.0));
+    extensionTexture(p, *e, ep, "anisotropyTexture", TextureSlot::Anisotropy, md, textureCount);
+  }
+  if (const json* e = p.object(ext, "KHR_materials_diffuse_transmission", path)) {
+    const std::string ep = path + ".KHR_materials_diffuse_transmission";
+    m.diffuseTransmission = unitFactor(p, *e, ep, "diffuseTransmissionFactor", 0.0, ctx);
+    const glm::vec3 c = p.vec<3>(*e, "diffuseTransmissionColorFactor", ep, glm::vec3(1.0f));
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      ctx.warn(ep + ".diffuseTransmissionColorFactor: outside [0, 1]; clamped");
+    m.diffuseTransmissionColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    extensionTexture(p, *e, ep, "diffuseTransmissionTexture", TextureSlot::DiffuseTransmission, md,
+                     textureCount);
+    extensionTexture(p, *e, ep, "diffuseTransmissionColorTexture",
+                     TextureSlot::DiffuseTransmissionColor, md, textureCount);
+  }
+}
+
 }  // namespace
 
 // Parses the 'materials' array.
@@ -196,6 +251,7 @@ void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx
       }
       parseMaterialExtensions(p, *ext, path + ".extensions", md, ctx, textureCount);
       parseTransmission(p, *ext, path + ".extensions", md, ctx, textureCount);
+      parseLaterExtensions(p, *ext, path + ".extensions", md, ctx, textureCount);
     }
     doc.materials.push_back(std::move(md));
   });
