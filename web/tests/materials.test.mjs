@@ -203,8 +203,18 @@ test('KHR_materials_variants: the variant is listed, selected by setVariant, and
       try { window.penumbraPage.viewer.setVariant('tartan'); return null; } catch (e) { return e.message; }
     });
     assert.match(bad, /^no variant 'tartan'; available: 0: 'shifted'$/);
+    // The panel's picker lists the model's own materials and the variant.
+    assert.equal(await pg.evaluate(() => document.getElementById('variant-row').hidden), false);
+    assert.deepEqual(await pg.evaluate(() => [...document.getElementById('variant').options].map((o) => o.value)),
+                     ['', 'shifted']);
     const before = await pg.evaluate(() => window.penumbraPage.convergedCount);
-    assert.equal(await pg.evaluate(() => window.penumbraPage.viewer.setVariant('shifted')), 'shifted');
+    // Picked there, as a person would (the panel is hidden in this test: set and dispatch).
+    await pg.evaluate(() => {
+      const select = document.getElementById('variant');
+      select.value = 'shifted';
+      select.dispatchEvent(new Event('change', { bubbles: true }));
+    });
+    assert.equal(await pg.evaluate(() => window.penumbraPage.viewer.info.scene.variant), 'shifted');
     await pg.waitForFunction((n) => window.penumbraPage.convergedCount > n, before, { timeout: 90_000 });
     const shifted = await pixels(pg);
     await pg.screenshot({ path: join(outDir, 'variants-shifted.png') });
@@ -230,6 +240,8 @@ async function likeNative(scene, shot, refUrl, what) {
   const r = await render(scene, shot);
   try {
     assert.deepEqual(r.warnings, [], `${what} loads without a warning`);
+    assert.equal(await r.pg.evaluate(() => document.getElementById('variant-row').hidden), true,
+                 'no variants: no variant picker');
     if (!refUrl) {
       console.log(`# no native penumbra-render built: ${what} not compared`);
       return r.canvas;

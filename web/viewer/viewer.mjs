@@ -96,6 +96,14 @@ function wirePanel(viewer) {
   form.addEventListener('input', (e) => { if (e.target.type === 'range') apply(e.target); });
   form.addEventListener('change', (e) => { if (e.target.type !== 'range') apply(e.target); });
   form.addEventListener('submit', (e) => e.preventDefault());
+  $('variant').addEventListener('change', (e) => {
+    try {
+      viewer.setVariant(e.target.value || null);
+    } catch (err) {
+      showError(err);
+      fillVariants(viewer);
+    }
+  });
   const toggle = $('toggle-panel');
   const setVisible = (v) => {
     form.classList.toggle('hidden', !v);
@@ -145,10 +153,22 @@ async function openFiles(viewer, fileList) {
   }
 }
 
+// The panel's variant picker (KHR_materials_variants): shown only for a model that has some.
+function fillVariants(viewer) {
+  const scene = viewer.info.scene || {};
+  const names = scene.variants || [];
+  const select = $('variant');
+  select.replaceChildren(select.options[0]);
+  for (const name of names) select.add(new Option(name, name));
+  select.value = scene.variant ?? '';
+  $('variant-row').hidden = names.length === 0;
+}
+
 async function loadScene(viewer, source, options) {
   const info = await viewer.loadScene(source, options);
   page.sceneName = info.name;
   fillPanel(viewer.settings);
+  fillVariants(viewer);
   document.title = `${info.name} — Penumbra viewer`;
   // A good load clears the notes of earlier failures: the problem they named is gone.
   for (const note of [...$('messages').querySelectorAll('.message.error')]) note.remove();
@@ -264,7 +284,10 @@ async function main() {
   try {
     await loadScene(viewer, sceneUrl);
     // ?variant=NAME: a KHR_materials_variants variant of the scene.
-    if (query.get('variant')) viewer.setVariant(query.get('variant'));
+    if (query.get('variant')) {
+      viewer.setVariant(query.get('variant'));
+      fillVariants(viewer);
+    }
   } catch (e) {
     showError(e);
   }
