@@ -16,7 +16,8 @@ export interface PenumbraViewerErrorDetail {
   sourceError: unknown;
 }
 
-export interface PenumbraViewerEventMap extends HTMLElementEventMap {
+/** The element's own events ('error' here is a CustomEvent, not the DOM's ErrorEvent). */
+export interface PenumbraViewerEventMap {
   /** A scene from src loaded (its variant-name and camera-* applied). */
   load: CustomEvent<{ url: string; scene: SceneInfo }>;
   error: CustomEvent<PenumbraViewerErrorDetail>;
@@ -62,10 +63,16 @@ export declare class PenumbraViewerElement extends HTMLElement {
   addEventListener<K extends keyof PenumbraViewerEventMap>(
     type: K, listener: (this: PenumbraViewerElement, ev: PenumbraViewerEventMap[K]) => unknown,
     options?: boolean | AddEventListenerOptions): void;
+  addEventListener<K extends keyof HTMLElementEventMap>(
+    type: K, listener: (this: PenumbraViewerElement, ev: HTMLElementEventMap[K]) => unknown,
+    options?: boolean | AddEventListenerOptions): void;
   addEventListener(type: string, listener: EventListenerOrEventListenerObject,
                    options?: boolean | AddEventListenerOptions): void;
   removeEventListener<K extends keyof PenumbraViewerEventMap>(
     type: K, listener: (this: PenumbraViewerElement, ev: PenumbraViewerEventMap[K]) => unknown,
+    options?: boolean | EventListenerOptions): void;
+  removeEventListener<K extends keyof HTMLElementEventMap>(
+    type: K, listener: (this: PenumbraViewerElement, ev: HTMLElementEventMap[K]) => unknown,
     options?: boolean | EventListenerOptions): void;
   removeEventListener(type: string, listener: EventListenerOrEventListenerObject,
                       options?: boolean | EventListenerOptions): void;
