@@ -9,7 +9,8 @@
 //
 // Small on purpose: 160x120 elements (pixelRatio 1 in headless Chromium), the Cornell box and
 // the material grid, frames="8". No bound on how fast anything answers: every wait has only a
-// generous timeout, so the file may run beside other tests (tools/test-web's `beside` list).
+// generous timeout (tools/test-web still runs it after the hand-off test, not beside it: its
+// SwiftShader work slows the path tracer's shader compile past that test's wait).
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -299,7 +300,7 @@ test('sizes like an image, follows CSS; alt; camera-controls gates the orbit', {
   });
 });
 
-test('poster with reveal="interaction": nothing drawn until a click', { timeout: TEST_MS }, async () => {
+test('poster with reveal="interaction": nothing drawn until a click; removed and inserted again', { timeout: TEST_MS }, async () => {
   await withTestPage('poster', async (pg) => {
     await pg.evaluate((src) => window.add(`<penumbra-viewer id="p" class="small" src="${src}" frames="8"
       poster="assets/glass/lattice.png" reveal="interaction"></penumbra-viewer>`), CORNELL);
@@ -315,6 +316,15 @@ test('poster with reveal="interaction": nothing drawn until a click', { timeout:
     await pg.click('#p');
     await waitConverged(pg, '#p', 1);
     assert.equal(await pg.evaluate(() => document.querySelector('#p').shadowRoot.querySelector('.poster').hidden), true);
+
+    // Removed, it frees its viewer and context; inserted again, it starts over on a new canvas.
+    await pg.evaluate(() => { window.kept = document.querySelector('#p'); window.kept.remove(); });
+    await pg.waitForFunction(() => window.kept.viewer === null, null, { timeout: WAIT_MS });
+    await pg.evaluate(() => document.body.append(window.kept));
+    await waitConverged(pg, '#p', 2);
+    const again = await pg.evaluate(() => ({ loads: window.kept.log.load.length,
+                                             canvases: window.kept.shadowRoot.querySelectorAll('canvas').length }));
+    assert.deepEqual(again, { loads: 2, canvases: 1 });
   });
 });
 
