@@ -52,8 +52,10 @@ add_link_options(-fexceptions)
 add_compile_options(-Wno-unknown-warning-option)
 
 add_library(penumbra_web_app INTERFACE)
+# specialHTMLTargets: Emscripten finds a canvas by document.querySelector, which cannot see into a
+# shadow root (<penumbra-viewer>'s canvas); the JS API registers its canvas there by selector.
 target_link_options(penumbra_web_app INTERFACE
   -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sFULL_ES3=1
   -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web
   -sMODULARIZE=1 -sEXPORT_ES6=1
-  "-sEXPORTED_RUNTIME_METHODS=['ccall','cwrap','UTF8ToString']")
+  "-sEXPORTED_RUNTIME_METHODS=['ccall','cwrap','UTF8ToString','specialHTMLTargets']")

@@ -118,6 +118,8 @@ export interface Bounds { min: Vec3; max: Vec3; }
 
 export interface SceneInfo {
   name: string;
+  /** A scene file (.json): it brought its camera, environment and settings. */
+  sceneFile: boolean;
   triangles: number;
   lights: number;
   cameras: string[];
@@ -198,6 +200,11 @@ export interface ViewerState {
   canvasWidth: number;
   canvasHeight: number;
   motionScale: number;
+  /** pause() is in effect. */
+  paused: boolean;
+  /** An animation frame is scheduled: false once converged with nothing new to show (the loop
+   *  sleeps until a change), and while paused. */
+  looping: boolean;
 }
 
 export interface BenchmarkResult {
@@ -237,8 +244,12 @@ export declare class Viewer {
    * module (once per page; rejects with a PenumbraError if it cannot be fetched).
    */
   loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
-  /** Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), or [r, g, b]. */
-  setEnvironment(source: Source | Vec3, options?: { name?: string }): Promise<void>;
+  /**
+   * Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), [r, g, b],
+   * 'studio' (the built-in neutral studio), or null: forget the environment set here and light
+   * by the rule (black for a scene with lights of its own, else the studio).
+   */
+  setEnvironment(source: Source | Vec3 | 'studio' | null, options?: { name?: string }): Promise<void>;
   /**
    * KHR_materials_variants: shows a variant of the loaded scene by name (or index); null or
    * 'default' for the primitives' own materials. Restarts the view. Returns the variant shown.
@@ -248,6 +259,9 @@ export declare class Viewer {
   setCamera(camera: CameraSpec | 'reset'): Promise<void>;
   setSettings(changes: Settings): Promise<EffectiveSettings>;
   restart(): void;
+  /** Stops drawing (an off-screen view) until resume(); what accumulated stays. */
+  pause(): void;
+  resume(): void;
   on<K extends keyof ViewerEvents>(event: K, handler: (detail: ViewerEvents[K]) => void): () => void;
   off<K extends keyof ViewerEvents>(event: K, handler: (detail: ViewerEvents[K]) => void): void;
   /** The canvas as PNG. */

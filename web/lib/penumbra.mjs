@@ -20,10 +20,11 @@ import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRa
 import { provideDecoders } from './decoders.mjs';
 import { bindWasmApi, timeSteps } from './wasm_api.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
+import { FrameLoop } from './loop.mjs';
 import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
+import { version } from './version.mjs';  // written by CMake from the project's version
 
-export { PenumbraError };
-export const version = '0.1.0';
+export { PenumbraError, version };
 
 const DEFAULTS = {
   ...ADAPT_DEFAULTS,     // budgetMs, resolutionScale, adaptiveResolution, maxSplit, ...
@@ -51,7 +52,8 @@ export class Viewer {
   #previewed = false;          // this view's first picture (the preview) was drawn
   #frameWorkMs = 0; #tiles = 0;  // time of the frame's parts so far; bands set in wasm
   #wasMoving = false; #refit = true;  // choose the still scale at the next still tick
-  #raf = 0; #running = false; #disposed = false; #lost = false; #dead = null;
+  #loop; #running = false; #disposed = false; #lost = false; #dead = null;
+  #resizeObserver = null;
   #sceneInfo = null; #report = ''; #context = '';
   #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, previewMs: 0,
              stepsPerTick: 0, partsPerTick: 0, split: 1, parts: 1, restartedAt: 0,
@@ -76,9 +78,13 @@ export class Viewer {
       throw new PenumbraError(`cannot load the Penumbra module: ${e && e.message ? e.message : e}`);
     }
     if (!canvas.id) canvas.id = `penumbra-canvas-${++canvasIds}`;
+    const selector = `#${CSS.escape(canvas.id)}`;
+    // Emscripten looks canvases up with document.querySelector, which does not see into a shadow
+    // root (<penumbra-viewer>): the module is given this one by its selector.
+    mod.specialHTMLTargets[selector] = canvas;
     var viewer = new Viewer(mod, canvas, opts);
     if (aborted) throw new PenumbraError(`the Penumbra module aborted: ${aborted}`);
-    const created = viewer.#call('pv_create', `#${CSS.escape(canvas.id)}`, opts.forceHalfFloat ? 1 : 0);
+    const created = viewer.#call('pv_create', selector, opts.forceHalfFloat ? 1 : 0);
     viewer.#context = created.context;
     viewer.#report = created.report;
     viewer.#schema = [...viewer.#call('pv_settings_schema').settings.filter((e) => e.viewer),
@@ -96,7 +102,7 @@ export class Viewer {
       throw e;
     }
     viewer.#running = true;
-    viewer.#raf = requestAnimationFrame(viewer.#tick);
+    viewer.#loop.wake();
     return viewer;
   }
 
@@ -109,6 +115,7 @@ export class Viewer {
     this.#adapt = new Adaptation({ minStillScale: opts.minStillScale,
                                    minMotionScale: opts.minMotionScale });
     this.#pv = bindWasmApi(mod);
+    this.#loop = new FrameLoop(this.#step, (e) => this.#emitError(e));
   }
 
   // ---- public API ---------------------------------------------------------------------------
@@ -125,7 +132,8 @@ export class Viewer {
              stillScale: this.#adapt.currentStillScale(this.#jsSettings),
              pixelRatio: this.#pixelRatio(),
              msPerMegapixel: cost === null ? null : cost * 1e6,
-             moving: this.#isMoving(performance.now()) };
+             moving: this.#isMoving(performance.now()), paused: this.#loop.paused,
+             looping: this.#loop.scheduled };
   }
   // Every setting setSettings() takes: {key, type, min, max, default, range, help}, from the
   // renderer's schema plus the JS side's budgetMs and resolutionScale.
@@ -174,7 +182,8 @@ export class Viewer {
     } finally {
       this.#pv.pv_remove_tree(root);
     }
-    this.#sceneInfo = { name: main.name, triangles: info.triangles, lights: info.lights,
+    this.#sceneInfo = { name: main.name, sceneFile: info.sceneFile,
+                        triangles: info.triangles, lights: info.lights,
                         cameras: info.cameras, variants: info.variants, variant: info.variant,
                         warnings: info.warnings, bounds: info.bounds,
                         environment: info.environment };
@@ -203,10 +212,17 @@ export class Viewer {
   }
 
   // A packed environment (.hdr from penumbra-prefilter) or an equirectangular panorama
-  // (.hdr/.png, prefiltered on load at a small size), from a URL, bytes or a File; or [r, g, b]
-  // for a uniform environment.
+  // (.hdr/.png, prefiltered on load at a small size), from a URL, bytes or a File; [r, g, b]
+  // for a uniform environment; 'studio' for the built-in neutral studio (as in a scene file);
+  // null to forget the one set here and light by the rule (black with lights, else the studio).
   async setEnvironment(source, { name } = {}) {
     this.#check();
+    if (source === null || source === 'studio') {
+      const state = this.#call('pv_set_builtin_environment', source === null ? 'default' : 'studio');
+      if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
+      this.#restarted();
+      return;
+    }
     if (Array.isArray(source)) {
       if (source.length !== 3 || !source.every(Number.isFinite)) {
         throw new PenumbraError('a uniform environment is [r, g, b]');
@@ -284,8 +300,14 @@ export class Viewer {
     Object.assign(this.#jsSettings, js);
     if (Object.keys(js).length) this.#refit = true;  // budget or bounds changed: choose again
     this.#needsPresent = true;  // exposure and tone mapping change the display without a restart
+    this.#loop.wake();
     return this.#lost ? { ...this.#overrides, ...this.#jsSettings } : this.settings;
   }
+
+  // Stops drawing (an off-screen or hidden view) until resume(); what accumulated stays, and
+  // changes made meanwhile apply on resume.
+  pause() { this.#loop.pause(); }
+  resume() { this.#loop.resume(); }
 
   // Restarts accumulation at frame 1.
   restart() {
@@ -347,7 +369,9 @@ export class Viewer {
     if (this.#disposed) return;
     this.#disposed = true;
     this.#running = false;
-    cancelAnimationFrame(this.#raf);
+    this.#loop.stop();
+    this.#resizeObserver?.disconnect();
+    window.removeEventListener('resize', this.#loop.wake);
     this.#controls?.detach();
     this.#canvas.removeEventListener('webglcontextlost', this.#onLost);
     this.#canvas.removeEventListener('webglcontextrestored', this.#onRestored);
@@ -360,13 +384,24 @@ export class Viewer {
   #attach() {
     this.#canvas.addEventListener('webglcontextlost', this.#onLost);
     this.#canvas.addEventListener('webglcontextrestored', this.#onRestored);
+    // The loop sleeps once converged (#step): a new CSS size or pixel ratio wakes it.
+    if (this.#opts.autoResize && typeof ResizeObserver === 'function') {
+      this.#resizeObserver = new ResizeObserver(this.#loop.wake);
+      this.#resizeObserver.observe(this.#canvas);
+    }
+    window.addEventListener('resize', this.#loop.wake);
     if (this.#opts.controls) {
       this.#controls = attachOrbitControls(this.#canvas, {
         // Proxy so the controls always act on the current scene's orbit camera.
         orbit: (...a) => this.#orbit?.orbit(...a), pan: (...a) => this.#orbit?.pan(...a),
         zoom: (...a) => this.#orbit?.zoom(...a),
       }, {
-        onChange: () => { if (this.#orbit) { this.#cameraDirty = true; this.#lastChange = performance.now(); } },
+        onChange: () => {
+          if (!this.#orbit) return;
+          this.#cameraDirty = true;
+          this.#lastChange = performance.now();
+          this.#loop.wake();
+        },
         onReset: () => { if (this.#sceneInfo) this.setCamera('reset').catch((e) => this.#emitError(e)); },
       });
     }
@@ -454,6 +489,7 @@ export class Viewer {
     this.#stats.restartedAt = performance.now();
     this.#stats.converged = false;
     this.#frameWorkMs = 0;  // wasm drops a frame in progress on any restart
+    this.#loop.wake();
   }
 
   // Moving = the camera changed within stillMs. A finger or button held still does not count:
@@ -495,18 +531,14 @@ export class Viewer {
     return effectivePixelRatio(this.#opts, globalThis.devicePixelRatio);
   }
 
-  #tick = () => {
-    if (this.#disposed) return;
-    this.#raf = requestAnimationFrame(this.#tick);
-    if (!this.#running || this.#dead || this.#lost) return;
-    try {
-      this.#frame();
-    } catch (e) {
-      // One report per failure burst: stop stepping until something changes.
-      this.#running = false;
-      this.#emitError(e);
-      setTimeout(() => { if (!this.#disposed && !this.#dead) this.#running = true; }, 1000);
-    }
+  // One animation frame of the loop (loop.mjs). Returns false once converged with nothing new
+  // to show: the loop then sleeps until a change wakes it (#restarted, setSettings, the
+  // controls, a resize, resume()); also while lost, dead or benchmarking, which wake it after.
+  #step = () => {
+    if (this.#disposed || !this.#running || this.#dead || this.#lost) return false;
+    this.#frame();
+    return !(this.#stats.converged && !this.#needsPresent && !this.#cameraDirty &&
+             !this.#isMoving(performance.now()));
   };
 
   #frame() {

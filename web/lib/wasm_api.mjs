@@ -13,6 +13,7 @@ export function bindWasmApi(mod) {
     pv_load_scene: w('pv_load_scene', s, [s, s]),
     pv_set_environment: w('pv_set_environment', s, [s, s]),
     pv_set_uniform_environment: w('pv_set_uniform_environment', s, [n, n, n]),
+    pv_set_builtin_environment: w('pv_set_builtin_environment', s, [s]),
     pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
     pv_settings_schema: w('pv_settings_schema', s, []),
     pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),

@@ -335,6 +335,37 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, fl
   });
 }
 
+// A built-in environment: "studio" (the neutral studio, as a scene file's "studio") stays for
+// later bare models like a file set through the API; "default" forgets the API's environment
+// and applies the rule (black for a scene with lights of its own, else the studio), which later
+// bare models follow too.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_builtin_environment(const char* name) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    const std::string kind = name ? name : "";
+    if (kind != "studio" && kind != "default") {
+      return errorJson("unknown built-in environment '" + kind + "' (studio or default)");
+    }
+    // Without a scene the rule waits for one: loadScene applies it.
+    if (kind == "default" && !(*v)->scene) {
+      (*v)->environmentFromUser = false;
+      return stateJson(**v);
+    }
+    std::string envName = "studio";
+    auto env = kind == "studio"
+                   ? studioEnvironment()
+                   : resolveEnvironment({.kind = EnvironmentSpec::Kind::Default}, *(*v)->scene,
+                                        {}, &envName);
+    if (!env) return errorJson(env.message());
+    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
+    (*v)->environment = std::move(*env);
+    (*v)->environmentName = envName;
+    (*v)->environmentFromUser = kind == "studio";
+    return stateJson(**v);
+  });
+}
+
 // Merges a JSON object of settings (keys of the settings schema, penumbra/settings.h) into the
 // current ones. The JS API passes only the keys the schema marks for the viewer; the canvas
 // size arrives here as width and height.

@@ -1,0 +1,378 @@
+// Browser tests of <penumbra-viewer> (web/lib/element.mjs, served from web/dist/lib) in Debian's
+// headless Chromium: exposure changes the image without a restart, a src swap loads the new
+// scene, `converged` comes once per view and the loop then sleeps, a bad src or attribute fires
+// `error` with a one-line message and the element keeps working, loading="lazy" creates nothing
+// and an eager element draws nothing while off-screen, the element sizes like an image and its
+// canvas follows CSS, camera-controls gates the orbit, a poster with reveal="interaction" waits
+// for a click, environment-image and the schema's settings apply as attributes, and docs/web.md
+// lists every settings attribute.
+//
+// Small on purpose: 160x120 elements (pixelRatio 1 in headless Chromium), the Cornell box and
+// the material grid, frames="8". No bound on how fast anything answers: every wait has only a
+// generous timeout (tools/test-web still runs it after the hand-off test, not beside it: its
+// SwiftShader work slows the path tracer's shader compile past that test's wait).
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { closeServer, dist, launch, outDir, recordConsole, root, serve,
+         withTimeout } from './harness.mjs';
+
+const WAIT_MS = 90_000;   // SwiftShader on 2 shared cores: a module start and 8 frames take 3-20 s
+const TEST_MS = 240_000;
+const CORNELL = 'assets/cornell_box/cornell_box.gltf';
+const GRID = 'assets/material_grid/material_grid.gltf';
+
+// The test page: loads the element module and records every element's events on it.
+const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</title>
+<style>body { margin: 0; } penumbra-viewer.small { width: 160px; height: 120px; }</style>
+<script type="module">
+  import { settingAttribute } from './lib/element.mjs';
+  window.settingAttribute = settingAttribute;
+  window.add = (html, parent = document.body) => {
+    const t = document.createElement('template');
+    t.innerHTML = html;
+    const el = t.content.firstElementChild;
+    el.log = { load: [], error: [], converged: 0, progress: 0 };
+    el.addEventListener('load', (e) => el.log.load.push(e.detail.url));
+    el.addEventListener('error', (e) => el.log.error.push({ type: e.detail.type, message: e.detail.message }));
+    el.addEventListener('converged', () => el.log.converged++);
+    el.addEventListener('progress', () => el.log.progress++);
+    parent.append(el);
+    return el;
+  };
+  // The displayed canvas (the context keeps its drawing buffer) as RGBA bytes.
+  window.shot = (el) => {
+    const c = el.shadowRoot.querySelector('canvas');
+    const t = document.createElement('canvas');
+    t.width = c.width;
+    t.height = c.height;
+    const ctx = t.getContext('2d');
+    ctx.drawImage(c, 0, 0);
+    return { width: t.width, height: t.height, data: [...ctx.getImageData(0, 0, t.width, t.height).data] };
+  };
+  window.frames = (n) => new Promise((ok) => {
+    const next = () => (n-- <= 0 ? ok() : requestAnimationFrame(next));
+    requestAnimationFrame(next);
+  });
+  window.ready = true;
+</script>`;
+
+let server, browser;
+const consoleLines = [];
+
+before(async () => {
+  if (!existsSync(join(dist, 'lib/element.mjs'))) {
+    throw new Error(`${dist}/lib/element.mjs is not built: run tools/build-web first`);
+  }
+  mkdirSync(outDir, { recursive: true });
+  const page = join(outDir, 'element-page.html');
+  writeFileSync(page, PAGE);
+  server = await serve(dist, { '/element.html': page });
+  browser = await launch({ viewport: { width: 800, height: 600 } });
+}, { timeout: 60_000 });
+
+after(async () => {
+  if (browser) await browser.close();
+  closeServer(server);
+});
+
+// A fresh page with the test page loaded; on failure the message gets a screenshot and the
+// console.
+async function withTestPage(name, body) {
+  const pg = await withTimeout(browser.context.newPage(), 10_000, 'new page');
+  recordConsole(pg, consoleLines);
+  try {
+    await pg.goto(`http://127.0.0.1:${server.address().port}/element.html`, { timeout: 20_000 });
+    await pg.waitForFunction(() => window.ready, null, { timeout: 20_000 });
+    await body(pg);
+  } catch (e) {
+    const shot = join(outDir, `element-${name}.png`);
+    await withTimeout(pg.screenshot({ path: shot, timeout: 8_000 }), 10_000, 'screenshot').catch(() => {});
+    e.message += `\n--- console ---\n${consoleLines.slice(-30).join('\n')}\n--- screenshot: ${shot}`;
+    throw e;
+  } finally {
+    await withTimeout(pg.close(), 10_000, 'close page').catch(() => {});
+  }
+}
+
+// Waits until `el` (a selector) has fired `count` converged events, or an error.
+async function waitConverged(pg, selector, count) {
+  await pg.waitForFunction(([s, n]) => {
+    const el = document.querySelector(s);
+    return el.log.converged >= n || el.log.error.length > 0;
+  }, [selector, count], { timeout: WAIT_MS, polling: 100 });
+  const log = await pg.evaluate((s) => document.querySelector(s).log, selector);
+  assert.deepEqual(log.error, [], `${selector}: no error while rendering`);
+  return log;
+}
+
+const shot = (pg, selector) => pg.evaluate((s) => window.shot(document.querySelector(s)), selector);
+
+// Mean |a - b| over R, G, B in [0, 1], and the mean of an image.
+function meanDiff(a, b) {
+  assert.equal(a.data.length, b.data.length, 'same size');
+  let sum = 0, n = 0;
+  for (let i = 0; i < a.data.length; i += 4) {
+    for (let c = 0; c < 3; c++, n++) sum += Math.abs(a.data[i + c] - b.data[i + c]);
+  }
+  return sum / n / 255;
+}
+function mean(img) {
+  let sum = 0, n = 0;
+  for (let i = 0; i < img.data.length; i += 4) for (let c = 0; c < 3; c++, n++) sum += img.data[i + c];
+  return sum / n / 255;
+}
+
+test('exposure changes the image without a restart; converged once per view; src swap', { timeout: TEST_MS }, async () => {
+  await withTestPage('views', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="a" class="small" src="${src}" frames="8"
+      adaptive-resolution="false" alt="A Cornell box"></penumbra-viewer>`), CORNELL);
+    let log = await waitConverged(pg, '#a', 1);
+    assert.equal(log.load.length, 1);
+    assert.match(log.load[0], /cornell_box\.gltf$/);
+    // Converged: the loop sleeps, and no frame is drawn or event fired any more.
+    await pg.evaluate(() => window.frames(3));
+    const asleep = await pg.evaluate(() => {
+      const s = document.querySelector('#a').viewer.state;
+      return { frame: s.frame, total: s.total, looping: s.looping, renderWidth: s.renderWidth,
+               adaptive: document.querySelector('#a').viewer.settings.adaptiveResolution };
+    });
+    assert.deepEqual(asleep, { frame: 8, total: 8, looping: false, renderWidth: 160, adaptive: false });
+    const progressBefore = log.progress;
+    await pg.waitForTimeout(1500);
+    log = await pg.evaluate(() => document.querySelector('#a').log);
+    assert.equal(log.converged, 1, 'one converged event for one view');
+    assert.equal(log.progress, progressBefore, 'no frames drawn after convergence');
+
+    const dark = await shot(pg, '#a');
+    await pg.evaluate(() => document.querySelector('#a').setAttribute('exposure', '2'));
+    await pg.waitForFunction(() => document.querySelector('#a').viewer.settings.exposure === 2,
+                             null, { timeout: WAIT_MS });
+    await pg.evaluate(() => window.frames(3));
+    const bright = await shot(pg, '#a');
+    assert.ok(mean(bright) > mean(dark) + 0.05,
+              `exposure 2 EV brightens the image: mean ${mean(dark).toFixed(3)} -> ${mean(bright).toFixed(3)}`);
+    const after = await pg.evaluate(() => ({ ...document.querySelector('#a').log,
+                                             frame: document.querySelector('#a').viewer.state.frame }));
+    assert.equal(after.converged, 1, 'exposure applies to the converged image: no new view');
+    assert.equal(after.frame, 8);
+
+    // A new camera is a new view: converged once more.
+    await pg.evaluate(() => document.querySelector('#a').setAttribute('camera-orbit', '35deg 70deg auto'));
+    log = await waitConverged(pg, '#a', 2);
+    const turned = await shot(pg, '#a');
+    assert.ok(meanDiff(turned, bright) > 0.02, `camera-orbit moves the view (${meanDiff(turned, bright).toFixed(4)})`);
+
+    // src swap: the material grid replaces the Cornell box.
+    await pg.evaluate((src) => { document.querySelector('#a').src = src; }, GRID);
+    log = await waitConverged(pg, '#a', 3);
+    assert.equal(log.load.length, 2);
+    assert.match(log.load[1], /material_grid\.gltf$/);
+    const grid = await shot(pg, '#a');
+    assert.ok(meanDiff(grid, turned) > 0.05, `the new scene is shown (${meanDiff(grid, turned).toFixed(4)})`);
+    await pg.waitForTimeout(1000);
+    assert.equal((await pg.evaluate(() => document.querySelector('#a').log.converged)), 3,
+                 'one converged event per view');
+  });
+});
+
+test('a bad src or attribute fires error with a one-line message; the element goes on', { timeout: TEST_MS }, async () => {
+  await withTestPage('errors', async (pg) => {
+    await pg.evaluate(() => window.add(`<penumbra-viewer id="b" class="small" src="assets/missing.glb"
+      frames="8"></penumbra-viewer>`));
+    await pg.waitForFunction(() => document.querySelector('#b').log.error.length > 0, null, { timeout: WAIT_MS });
+    let log = await pg.evaluate(() => document.querySelector('#b').log);
+    assert.equal(log.error.length, 1);
+    assert.equal(log.error[0].type, 'loadfailure');
+    assert.match(log.error[0].message, /^cannot fetch http:\/\/127\.0\.0\.1:\d+\/assets\/missing\.glb: HTTP 404/);
+    assert.doesNotMatch(log.error[0].message, /\n/);
+    assert.deepEqual(log.load, []);
+
+    // A bad setting value: named by its attribute, one line; the good ones apply.
+    await pg.evaluate(() => {
+      const el = document.querySelector('#b');
+      el.setAttribute('fd', 'lots');
+      el.setAttribute('occlusion-distance', '0.25');
+    });
+    await pg.waitForFunction(() => document.querySelector('#b').log.error.length > 1, null, { timeout: WAIT_MS });
+    log = await pg.evaluate(() => document.querySelector('#b').log);
+    assert.deepEqual(log.error[1], { type: 'attribute', message: 'fd="lots": not a number' });
+    await pg.evaluate(() => document.querySelector('#b').setAttribute('frames', '0'));
+    await pg.waitForFunction(() => document.querySelector('#b').log.error.length > 2, null, { timeout: WAIT_MS });
+    log = await pg.evaluate(() => document.querySelector('#b').log);
+    assert.equal(log.error[2].type, 'attribute');
+    assert.match(log.error[2].message, /^frames="0": .*frames/);
+    assert.doesNotMatch(log.error[2].message, /\n/);
+    assert.equal(await pg.evaluate(() => document.querySelector('#b').viewer.settings.occlusionDistance), 0.25);
+
+    // Still alive: a good src loads and converges (frames back to 8).
+    await pg.evaluate((src) => {
+      const el = document.querySelector('#b');
+      el.setAttribute('frames', '8');
+      el.removeAttribute('fd');
+      el.src = src;
+    }, CORNELL);
+    await pg.waitForFunction(() => document.querySelector('#b').log.converged >= 1, null, { timeout: WAIT_MS });
+    log = await pg.evaluate(() => document.querySelector('#b').log);
+    assert.equal(log.error.length, 3, 'no further errors');
+    assert.equal(log.load.length, 1);
+    assert.equal(await pg.evaluate(() => document.querySelector('#b').loaded), true);
+  });
+});
+
+test('loading="lazy" creates nothing off-screen; an eager element loads but draws nothing until seen', { timeout: TEST_MS }, async () => {
+  await withTestPage('lazy', async (pg) => {
+    await pg.evaluate((src) => {
+      window.add('<div style="height: 3000px">spacer</div>');
+      const row = window.add('<div id="row"></div>');
+      window.add(`<penumbra-viewer id="lazy" class="small" loading="lazy" src="${src}" frames="8"></penumbra-viewer>`, row);
+      window.add(`<penumbra-viewer id="eager" class="small" src="${src}" frames="8"></penumbra-viewer>`, row);
+    }, CORNELL);
+    await pg.waitForFunction(() => document.querySelector('#eager').log.load.length > 0 ||
+                                   document.querySelector('#eager').log.error.length > 0,
+                             null, { timeout: WAIT_MS });
+    await pg.waitForTimeout(1500);  // time enough for frames, were any drawn
+    const off = await pg.evaluate(() => {
+      const lazy = document.querySelector('#lazy'), eager = document.querySelector('#eager');
+      return { lazyViewer: lazy.viewer === null, lazyLog: lazy.log, eagerLog: eager.log,
+               eagerFrame: eager.viewer.state.frame, eagerPaused: eager.viewer.state.paused };
+    });
+    assert.deepEqual(off.lazyLog, { load: [], error: [], converged: 0, progress: 0 });
+    assert.equal(off.lazyViewer, true, 'a lazy element off-screen has no viewer yet');
+    assert.equal(off.eagerLog.load.length, 1, 'the eager element loaded its scene');
+    assert.equal(off.eagerLog.progress, 0, 'and drew no frame off-screen');
+    assert.equal(off.eagerFrame, 0);
+    assert.equal(off.eagerPaused, true);
+
+    await pg.evaluate(() => document.querySelector('#row').scrollIntoView());
+    await waitConverged(pg, '#lazy', 1);
+    await waitConverged(pg, '#eager', 1);
+    const lazyShot = await shot(pg, '#lazy');
+    assert.ok(mean(lazyShot) > 0.02, 'the lazy element shows the scene once on screen');
+  });
+});
+
+test('sizes like an image, follows CSS; alt; camera-controls gates the orbit', { timeout: TEST_MS }, async () => {
+  await withTestPage('size', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="c" src="${src}" frames="8"
+      adaptive-resolution="false" alt="Three boxes in a red and green room"></penumbra-viewer>`), CORNELL);
+    let log = await waitConverged(pg, '#c', 1);
+    const box = await pg.evaluate(() => {
+      const el = document.querySelector('#c');
+      const r = el.getBoundingClientRect();
+      const c = el.shadowRoot.querySelector('canvas');
+      return { w: r.width, h: r.height, display: getComputedStyle(el).display, cw: c.width,
+               ch: c.height, role: el.getAttribute('role'), label: el.getAttribute('aria-label'),
+               pointer: getComputedStyle(c).pointerEvents };
+    });
+    assert.deepEqual(box, { w: 300, h: 150, display: 'inline-block', cw: 300, ch: 150, role: 'img',
+                            label: 'Three boxes in a red and green room', pointer: 'none' });
+
+    // Without camera-controls a drag does nothing; with it, it orbits (a new view).
+    const drag = async () => {
+      const r = await pg.evaluate(() => {
+        const b = document.querySelector('#c').getBoundingClientRect();
+        return { x: b.x + b.width / 2, y: b.y + b.height / 2 };
+      });
+      await pg.mouse.move(r.x, r.y);
+      await pg.mouse.down();
+      for (let i = 1; i <= 5; i++) await pg.mouse.move(r.x + 8 * i, r.y + 2 * i);
+      await pg.mouse.up();
+    };
+    await drag();
+    await pg.waitForTimeout(1000);
+    log = await pg.evaluate(() => document.querySelector('#c').log);
+    assert.equal(log.converged, 1, 'no camera-controls: the drag changed nothing');
+    await pg.evaluate(() => { document.querySelector('#c').cameraControls = true; });
+    await pg.waitForFunction(() => getComputedStyle(document.querySelector('#c').shadowRoot
+      .querySelector('canvas')).pointerEvents === 'auto', null, { timeout: WAIT_MS });
+    await drag();
+    await waitConverged(pg, '#c', 2);
+
+    // CSS size: the canvas (and the drawing buffer) follow, also after convergence.
+    await pg.evaluate(() => { document.querySelector('#c').style.cssText = 'width: 200px; height: 100px'; });
+    await pg.waitForFunction(() => {
+      const c = document.querySelector('#c').shadowRoot.querySelector('canvas');
+      return c.width === 200 && c.height === 100;
+    }, null, { timeout: WAIT_MS });
+    await waitConverged(pg, '#c', 3);
+  });
+});
+
+test('poster with reveal="interaction": nothing drawn until a click; removed and inserted again', { timeout: TEST_MS }, async () => {
+  await withTestPage('poster', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="p" class="small" src="${src}" frames="8"
+      poster="assets/glass/lattice.png" reveal="interaction"></penumbra-viewer>`), CORNELL);
+    await pg.waitForFunction(() => document.querySelector('#p').log.load.length > 0, null, { timeout: WAIT_MS });
+    await pg.waitForTimeout(1500);
+    const before = await pg.evaluate(() => {
+      const el = document.querySelector('#p');
+      const poster = el.shadowRoot.querySelector('.poster');
+      return { progress: el.log.progress, posterHidden: poster.hidden, src: poster.getAttribute('src'),
+               tabindex: el.getAttribute('tabindex') };
+    });
+    assert.deepEqual(before, { progress: 0, posterHidden: false, src: 'assets/glass/lattice.png', tabindex: '0' });
+    await pg.click('#p');
+    await waitConverged(pg, '#p', 1);
+    assert.equal(await pg.evaluate(() => document.querySelector('#p').shadowRoot.querySelector('.poster').hidden), true);
+
+    // Removed, it frees its viewer and context; inserted again, it starts over on a new canvas.
+    await pg.evaluate(() => { window.kept = document.querySelector('#p'); window.kept.remove(); });
+    await pg.waitForFunction(() => window.kept.viewer === null, null, { timeout: WAIT_MS });
+    await pg.evaluate(() => document.body.append(window.kept));
+    await waitConverged(pg, '#p', 2);
+    const again = await pg.evaluate(() => ({ loads: window.kept.log.load.length,
+                                             canvases: window.kept.shadowRoot.querySelectorAll('canvas').length }));
+    assert.deepEqual(again, { loads: 2, canvases: 1 });
+  });
+});
+
+test('environment-image and the schema\'s settings as attributes; docs/web.md lists them', { timeout: TEST_MS }, async () => {
+  await withTestPage('settings', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="s" class="small" src="${src}" frames="8"
+      environment-image="neutral" tone-mapping="neutral" occlusion-distance="0.3"
+      screen-space-indirect="false"></penumbra-viewer>`), CORNELL);
+    await waitConverged(pg, '#s', 1);
+    let state = await pg.evaluate(() => {
+      const v = document.querySelector('#s').viewer;
+      return { env: v.info.scene.environment, s: v.settings };
+    });
+    assert.equal(state.env, 'studio', 'environment-image="neutral" is the built-in studio');
+    assert.equal(state.s.toneMapper, 'pbr-neutral');
+    assert.equal(state.s.occlusionDistance, 0.3);
+    assert.equal(state.s.screenSpaceIndirect, false);
+    const studio = await shot(pg, '#s');
+
+    // A new environment restarts the view; wait for it to converge with that environment.
+    const convergedWith = (env) => pg.waitForFunction((e) => {
+      const el = document.querySelector('#s');
+      return el.log.error.length > 0 ||
+             (el.viewer.info.scene.environment === e && el.viewer.state.converged);
+    }, env, { timeout: WAIT_MS, polling: 100 });
+    await pg.evaluate(() => {
+      const el = document.querySelector('#s');
+      el.environmentImage = 'assets/env/studio_sky.hdr';
+      el.removeAttribute('occlusion-distance');
+    });
+    await convergedWith('studio_sky.hdr');
+    state = await pg.evaluate(() => {
+      const el = document.querySelector('#s');
+      const d = el.viewer.settingsSchema.find((e) => e.key === 'occlusionDistance').default;
+      return { errors: el.log.error, od: el.viewer.settings.occlusionDistance, d };
+    });
+    assert.deepEqual(state.errors, []);
+    assert.equal(state.od, state.d, 'a removed attribute sets the default back');
+    assert.ok(meanDiff(await shot(pg, '#s'), studio) > 0.005, 'another environment, another image');
+    // Removed: the rule for this scene (it has a light of its own: black).
+    await pg.evaluate(() => document.querySelector('#s').removeAttribute('environment-image'));
+    await convergedWith('none');
+
+    // Every setting of the schema has its attribute in docs/web.md's table.
+    const attrs = await pg.evaluate(() => document.querySelector('#s').viewer.settingsSchema
+      .map((e) => window.settingAttribute(e.key)));
+    const docs = readFileSync(join(root, 'docs/web.md'), 'utf8');
+    const missing = attrs.filter((a) => !docs.includes(`| \`${a}\``));
+    assert.deepEqual(missing, [], 'docs/web.md lists every settings attribute');
+  });
+});
