@@ -49,7 +49,7 @@ PackedEnvironment sunEnvironment(const glm::vec3& dir, double radius) {
   return env.ok() ? std::move(*env) : uniformEnvironment(glm::vec3(0.0f));
 }
 
-struct Render {
+struct PlateRender {
   Image image;
   CameraMatrices camera;
   // Bilinear, so the profile is not quantised to pixels.
@@ -59,7 +59,7 @@ struct Render {
 };
 
 // A floor and a thin plate over x in [-2, 1] at height 1: its edge at x = 1 shades the floor.
-Render renderPlate(const PackedEnvironment& env, float rotation = 0.0f) {
+PlateRender renderPlate(const PackedEnvironment& env, float rotation = 0.0f) {
   Scene s;
   s.materials = {lambert(glm::vec3(0.8f)), lambert(glm::vec3(0.5f))};
   s.meshes.push_back(quadMesh(4.0f, 0.0f, 0));
@@ -100,7 +100,7 @@ TEST_F(SunShadowGLTest, PenumbraWidthFollowsTheSunsSize) {
   const double radius = 3.0 * std::numbers::pi / 180.0;
   const PackedEnvironment env = sunEnvironment({0.0f, 1.0f, 0.0f}, radius);
   ASSERT_TRUE(env.sun.has_value());
-  const Render r = renderPlate(env);
+  const PlateRender r = renderPlate(env);
   (void)writeImage(outputDir() + "/sun_penumbra.png", r.image);  // to look at
   const double R = std::tan(env.sun->angularRadius);             // plate at height 1
   const auto level = [&](double from, double to) {
@@ -134,7 +134,7 @@ TEST_F(SunShadowGLTest, TheSunTurnsWithTheEnvironment) {
   // shadow falls towards +x); turned by 180 degrees it shines from +x and the floor there is lit.
   const glm::vec3 dir = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.0f));
   const PackedEnvironment env = sunEnvironment(dir, 1.0 * std::numbers::pi / 180.0);
-  const Render a = renderPlate(env, 0.0f), b = renderPlate(env, 180.0f);
+  const PlateRender a = renderPlate(env, 0.0f), b = renderPlate(env, 180.0f);
   const glm::vec3 p(1.5f, 0.0f, 0.0f);  // half a unit past the edge
   EXPECT_LT(a.at(p), 0.1f * b.at(p));
 }

@@ -155,7 +155,8 @@ def main():
     if a.material == "gltf":
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         from gltf_brdf import use_gltf_brdf
-        rebuilt = use_gltf_brdf(g.get("materials", []))
+        rebuilt = use_gltf_brdf(g.get("materials", []), g,
+                                os.path.dirname(os.path.abspath(sf["gltf"])))
 
     # ---- output size
     if a.size:

@@ -24,6 +24,9 @@ SCENES = {
     "glass": "assets/glass/glass.json",
     "room_cm": "assets/room_cm/room_cm.json",  # modelled in centimetres (issue #14)
     "showroom": "assets/showroom/showroom.json",  # clearcoat, glass, sheen (issue #17)
+    # iridescence, anisotropy, diffuse transmission, dispersion (issue #38); Blender 3.4 has no
+    # thin film and no dispersion: the reference lacks those two (gltf_brdf.py)
+    "extensions": "assets/extensions/extensions.json",
 }
 SIZE = "1280x720"
 CYCLES_SAMPLES = 128  # the reference (seed 2)
@@ -328,7 +331,12 @@ def write_report(a, results, skipped, frames, when):
              "mesh with a Volume Absorption for KHR_materials_volume (a Transparent BSDF tinted by "
              "the base colour where thin-walled), clearcoat as a second GGX layer; Blender 3.4 has "
              "no Charlie sheen, so sheen is a Velvet BSDF added over the base, an approximation: "
-             "the velvet cushion's difference is partly the reference's. Eevee refracts in screen "
+             "the velvet cushion's difference is partly the reference's. The later extensions "
+             "(extensions): diffuse transmission as a Translucent BSDF mixed into the diffuse base, "
+             "anisotropy as Anisotropic BSDFs (GGX, the UV tangent, Cycles' roughness and "
+             "anisotropy solved for glTF's two alphas, the texture's strength); Blender 3.4 has "
+             "no thin film and no dispersion, so the film sphere and the prism are plain in the "
+             "reference and their difference is the reference's. Eevee refracts in screen "
              "space. The reference is Cycles (CPU, no denoiser, box filter 1 px, default "
              "light paths: 12 bounces, indirect clamp 10); the peer is Eevee at %d samples with "
              "soft shadows, GTAO (distance = the scene's occlusion distance) and screen-space "

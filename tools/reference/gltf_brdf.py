@@ -32,8 +32,20 @@ The material extensions are rebuilt from the glTF file's own values (use_gltf_br
                               which is scaled by 1 - max(sheenColor) x 0.25. Blender 3.4 has no
                               Charlie sheen (the Velvet lobe is Ashikhmin's): the sheen reference
                               is approximate, and the evaluation says so.
+  KHR_materials_diffuse_transmission  the diffuse base = mix(Lambert(baseColor),
+                              Translucent(diffuseTransmissionColor), diffuseTransmission), each
+                              factor times its texture (.a strength, .rgb sRGB colour)
+  KHR_materials_anisotropy    the specular and metal lobes become Anisotropic BSDFs (GGX) on the
+                              UV map's tangent, with Cycles' (roughness, anisotropy) solved for
+                              glTF's alpha_t = mix(alpha, 1, strength^2) along the tangent and
+                              alpha_b = alpha across it; the texture's .b scales the strength
+                              (its .rg direction and the rotation are taken as the tangent: a
+                              warning names a material whose rotation is not 0)
+  KHR_materials_iridescence, KHR_materials_dispersion: Blender 3.4 has neither a thin film nor
+                              dispersion: rendered without (a warning names the material).
 """
 import math
+import os
 
 import bpy
 
@@ -71,10 +83,61 @@ def _math(tree, op, a, b):
     return node.outputs["Value"]
 
 
-def replace_principled(material, ext=None):
+def _texture(tree, textures, info, colour):
+    """An Image Texture node for a glTF textureInfo (`textures`: index -> image file path), on
+    the first UV map; None when the file is unknown."""
+    path = textures.get(info.get("index")) if info else None
+    if not path:
+        return None
+    node = tree.nodes.new("ShaderNodeTexImage")
+    node.image = bpy.data.images.load(path, check_existing=True)
+    node.image.colorspace_settings.name = "sRGB" if colour else "Non-Color"
+    return node
+
+
+def _scaled(tree, factor, tex_socket):
+    """factor x texture socket (a number when there is no texture)."""
+    return factor if tex_socket is None else _math(tree, "MULTIPLY", tex_socket, factor)
+
+
+def _anisotropic(tree, aniso, textures, alpha_socket):
+    """An Anisotropic BSDF (GGX, on the UV map's tangent) with glTF's alpha_t / alpha_b for
+    alpha (a socket or number); its Color and Normal are still to be fed."""
+    node = tree.nodes.new("ShaderNodeBsdfAnisotropic")
+    node.distribution = "GGX"
+    tangent = tree.nodes.new("ShaderNodeTangent")
+    tangent.direction_type = "UV_MAP"
+    tree.links.new(tangent.outputs["Tangent"], node.inputs["Tangent"])
+    strength = float(aniso.get("anisotropyStrength", 0.0))
+    tex = _texture(tree, textures, aniso.get("anisotropyTexture"), False)
+    b = None
+    if tex is not None:
+        sep = tree.nodes.new("ShaderNodeSeparateRGB")
+        tree.links.new(tex.outputs["Color"], sep.inputs["Image"])
+        b = sep.outputs["B"]
+    s = _scaled(tree, strength, b)
+    # alpha_t = a + (1 - a) s^2, alpha_b = a; Cycles: alpha_x = R / (1 + k), alpha_y = R (1 + k)
+    # for k < 0 with R = roughness^2 (x along the tangent): R = sqrt(at ab), 1 + k = sqrt(ab / at).
+    a = alpha_socket
+    s2 = _math(tree, "MULTIPLY", s, s) if not isinstance(s, float) else s * s
+    one_minus_a = _math(tree, "SUBTRACT", 1.0, a)
+    at = _math(tree, "ADD", a, _math(tree, "MULTIPLY", one_minus_a, s2))
+    r = _math(tree, "SQRT", _math(tree, "MULTIPLY", at, a), 0.0)
+    k = _math(tree, "SUBTRACT", _math(tree, "SQRT", _math(tree, "DIVIDE", a, at), 0.0), 1.0)
+    tree.links.new(_math(tree, "SQRT", r, 0.0), node.inputs["Roughness"])
+    tree.links.new(k, node.inputs["Anisotropy"])
+    return node
+
+
+def replace_principled(material, ext=None, textures=None):
     """Rebuilds one material; returns True when it had a Principled BSDF to replace. `ext`: the
-    glTF material's "extensions" object."""
+    glTF material's "extensions" object; `textures`: glTF texture index -> image file."""
     ext = ext or {}
+    textures = textures or {}
+    for name in ("KHR_materials_iridescence", "KHR_materials_dispersion"):
+        if name in ext:
+            print("warning: %s: %s is rendered without (Blender 3.4 has no equivalent)" %
+                  (material.name if material else "?", name))
     if not material or not material.use_nodes:
         return False
     tree = material.node_tree
@@ -110,7 +173,53 @@ def replace_principled(material, ext=None):
         for node in (diffuse, spec, metal, fresnel):
             tree.links.new(normal, node.inputs["Normal"])
 
+    aniso = ext.get("KHR_materials_anisotropy")
+    if aniso is not None and float(aniso.get("anisotropyStrength", 0.0)) > 0.0:
+        if float(aniso.get("anisotropyRotation", 0.0)) != 0.0:
+            print("warning: %s: the anisotropy's rotation is not rebuilt" % material.name)
+        # alpha = perceptual roughness squared, from what fed the Principled roughness.
+        rough_src = _source(tree, inp["Roughness"])
+        rough = rough_src if rough_src is not None else inp["Roughness"].default_value
+        alpha = _math(tree, "MULTIPLY", rough, rough)
+        new_spec = _anisotropic(tree, aniso, textures, alpha)
+        new_spec.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        new_metal = _anisotropic(tree, aniso, textures, alpha)
+        _feed(tree, new_metal.inputs["Color"], inp["Base Color"])
+        N.remove(spec)
+        N.remove(metal)
+        spec, metal = new_spec, new_metal
+        if normal is not None:
+            for node in (spec, metal):
+                tree.links.new(normal, node.inputs["Normal"])
+
     base = diffuse.outputs["BSDF"]
+    dt = ext.get("KHR_materials_diffuse_transmission")
+    if dt is not None and float(dt.get("diffuseTransmissionFactor", 0.0)) > 0.0:
+        translucent = N.new("ShaderNodeBsdfTranslucent")
+        colour = list(dt.get("diffuseTransmissionColorFactor", [1.0, 1.0, 1.0]))
+        ctex = _texture(tree, textures, dt.get("diffuseTransmissionColorTexture"), True)
+        if ctex is not None:
+            tint = N.new("ShaderNodeMixRGB")
+            tint.blend_type = "MULTIPLY"
+            tint.inputs["Fac"].default_value = 1.0
+            tint.inputs["Color1"].default_value = tuple(colour) + (1.0,)
+            tree.links.new(ctex.outputs["Color"], tint.inputs["Color2"])
+            tree.links.new(tint.outputs["Color"], translucent.inputs["Color"])
+        else:
+            translucent.inputs["Color"].default_value = tuple(colour) + (1.0,)
+        if normal is not None:
+            tree.links.new(normal, translucent.inputs["Normal"])
+        stex = _texture(tree, textures, dt.get("diffuseTransmissionTexture"), False)
+        share = N.new("ShaderNodeMixShader")
+        amount = _scaled(tree, float(dt["diffuseTransmissionFactor"]),
+                         stex.outputs["Alpha"] if stex is not None else None)
+        if isinstance(amount, float):
+            share.inputs["Fac"].default_value = amount
+        else:
+            tree.links.new(amount, share.inputs["Fac"])
+        tree.links.new(diffuse.outputs["BSDF"], share.inputs[1])
+        tree.links.new(translucent.outputs["BSDF"], share.inputs[2])
+        base = share.outputs["Shader"]
     transmission = float(ext.get("KHR_materials_transmission", {}).get("transmissionFactor", 0.0))
     volume = ext.get("KHR_materials_volume", {})
     thickness = float(volume.get("thicknessFactor", 0.0))
@@ -222,8 +331,17 @@ def replace_principled(material, ext=None):
     return True
 
 
-def use_gltf_brdf(gltf_materials=()):
+def use_gltf_brdf(gltf_materials=(), gltf=None, base_dir=""):
     """Replaces the Principled BSDF in every material (with the extensions of the glTF material
-    of the same name); returns how many were rebuilt."""
+    of the same name, and the extensions' textures from `gltf`'s images beside `base_dir`);
+    returns how many were rebuilt."""
     by_name = {m.get("name"): m.get("extensions", {}) for m in gltf_materials if m.get("name")}
-    return sum(1 for m in bpy.data.materials if replace_principled(m, by_name.get(m.name)))
+    textures = {}
+    gltf = gltf or {}
+    images = gltf.get("images", [])
+    for i, t in enumerate(gltf.get("textures", [])):
+        src = t.get("source")
+        if src is not None and src < len(images) and "uri" in images[src]:
+            textures[i] = os.path.join(base_dir, images[src]["uri"])
+    return sum(1 for m in bpy.data.materials
+               if replace_principled(m, by_name.get(m.name), textures))

@@ -4,8 +4,8 @@
 // `error` with a one-line message and the element keeps working, loading="lazy" creates nothing
 // and an eager element draws nothing while off-screen, the element sizes like an image and its
 // canvas follows CSS, camera-controls gates the orbit, a poster with reveal="interaction" waits
-// for a click, environment-image and the schema's settings apply as attributes, and docs/web.md
-// lists every settings attribute.
+// for a click, environment-image and the schema's settings apply as attributes, docs/web.md
+// lists every settings attribute, and variant-name selects a KHR_materials_variants variant.
 //
 // Small on purpose: 160x120 elements (pixelRatio 1 in headless Chromium), the Cornell box and
 // the material grid, frames="8". No bound on how fast anything answers: every wait has only a
@@ -22,6 +22,7 @@ const WAIT_MS = 90_000;   // SwiftShader on 2 shared cores: a module start and 8
 const TEST_MS = 240_000;
 const CORNELL = 'assets/cornell_box/cornell_box.gltf';
 const GRID = 'assets/material_grid/material_grid.gltf';
+const VARIANTS = 'assets/material_grid/element_variants.gltf';  // written by before()
 
 // The test page: loads the element module and records every element's events on it.
 const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</title>
@@ -68,7 +69,20 @@ before(async () => {
   mkdirSync(outDir, { recursive: true });
   const page = join(outDir, 'element-page.html');
   writeFileSync(page, PAGE);
-  server = await serve(dist, { '/element.html': page });
+  // The material grid with one KHR_materials_variants variant, "shifted", that moves every
+  // sphere's material twelve places on (beside the grid's own .bin, served from web/dist).
+  const doc = JSON.parse(readFileSync(join(root, GRID), 'utf8'));
+  const n = doc.materials.length;
+  doc.extensionsUsed = [...(doc.extensionsUsed || []), 'KHR_materials_variants'];
+  doc.extensions = { ...(doc.extensions || {}), KHR_materials_variants: { variants: [{ name: 'shifted' }] } };
+  for (const mesh of doc.meshes) {
+    for (const p of mesh.primitives) {
+      p.extensions = { KHR_materials_variants: { mappings: [{ material: ((p.material ?? 0) + 12) % n, variants: [0] }] } };
+    }
+  }
+  const variants = join(outDir, 'element-variants.gltf');
+  writeFileSync(variants, JSON.stringify(doc));
+  server = await serve(dist, { '/element.html': page, [`/${VARIANTS}`]: variants });
   browser = await launch({ viewport: { width: 800, height: 600 } });
 }, { timeout: 60_000 });
 
@@ -374,5 +388,28 @@ test('environment-image and the schema\'s settings as attributes; docs/web.md li
     const docs = readFileSync(join(root, 'docs/web.md'), 'utf8');
     const missing = attrs.filter((a) => !docs.includes(`| \`${a}\``));
     assert.deepEqual(missing, [], 'docs/web.md lists every settings attribute');
+  });
+});
+
+test('variant-name selects a material variant, removing it restores the model\'s own, a bad one is an error', { timeout: TEST_MS }, async () => {
+  await withTestPage('variants', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="v" class="small" src="${src}" frames="8"
+      variant-name="shifted"></penumbra-viewer>`), VARIANTS);
+    await waitConverged(pg, '#v', 1);
+    const scene = await pg.evaluate(() => document.querySelector('#v').viewer.info.scene);
+    assert.deepEqual(scene.variants, ['shifted']);
+    assert.equal(scene.variant, 'shifted');
+    const shifted = await shot(pg, '#v');
+    await pg.evaluate(() => document.querySelector('#v').removeAttribute('variant-name'));
+    await waitConverged(pg, '#v', 2);
+    assert.equal(await pg.evaluate(() => document.querySelector('#v').viewer.info.scene.variant), null);
+    const own = await shot(pg, '#v');
+    assert.ok(meanDiff(own, shifted) > 0.01, `the variant changes the image (${meanDiff(own, shifted).toFixed(4)})`);
+    await pg.evaluate(() => document.querySelector('#v').setAttribute('variant-name', 'tartan'));
+    await pg.waitForFunction(() => document.querySelector('#v').log.error.length > 0, null, { timeout: WAIT_MS });
+    const error = (await pg.evaluate(() => document.querySelector('#v').log.error))[0];
+    assert.equal(error.type, 'attribute');
+    assert.match(error.message, /^variant-name="tartan": no variant 'tartan'/);
+    assert.doesNotMatch(error.message, /\n/);
   });
 });

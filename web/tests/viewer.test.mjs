@@ -145,7 +145,12 @@ test('loads the default scene (Cornell box) and reaches m frames', { timeout: TE
     assert.ok(log[0] <= 2, `progress starts near frame 1 (got ${log[0]})`);
     assert.equal(log.at(-1), FRAMES);
     assert.ok(log.every((f, i) => i === 0 || f >= log[i - 1]), `frames only climb: ${log}`);
-    assert.equal(await page.textContent('#progress'), `frame ${FRAMES} of ${FRAMES}`);
+    // The status line in words; the numbers are on the detail line.
+    assert.equal(await page.textContent('#progress'), 'Done');
+    const words = await page.evaluate(() => window.penumbraPage.statusWords);
+    assert.ok(words.includes('Loading') && words.includes('Refining') && words.at(-1) === 'Done',
+              `the status line said Loading, Refining, Done (got ${words.join(' -> ')})`);
+    assert.match(await page.textContent('#detail'), new RegExp(`^frame ${FRAMES} of ${FRAMES} · `));
     shared.converged = await pixels(page);
     await page.screenshot({ path: join(outDir, 'viewer.png') });
   });

@@ -12,7 +12,8 @@ const query = new URLSearchParams(location.search);
 // What the tests read: errors shown, progress frames seen (bounded), counters.
 const page = {
   viewer: null, ready: false, errors: [], progressLog: [], convergedCount: 0,
-  lostCount: 0, restoredCount: 0, sceneName: null,
+  lostCount: 0, restoredCount: 0, sceneName: null, loading: null,
+  statusWords: [],  // the status line's first word each time it changes (bounded)
 };
 window.penumbraPage = page;
 
@@ -43,20 +44,37 @@ function showError(e) {
 
 // ---- progress line ----------------------------------------------------------------------------
 
+// The progress line in words (issue #42): what the page is doing, how far, how long still.
+// The detail line below it keeps the numbers (image size, time per frame) for the curious.
+function statusLine(s) {
+  if (page.loading) return `Loading ${page.loading}…`;
+  if (!s.total) return 'No scene: open or drop a glTF file';
+  if (s.converged) return 'Done';
+  const percent = Math.min(99, Math.floor((100 * s.frame) / s.total));
+  const left = s.total > s.frame && s.frameMs > 0 ? ((s.total - s.frame) * s.frameMs) / 1000 : 0;
+  // An automatic view's total is an estimate, so the time left is too: say it roughly.
+  const eta = left >= 1 ? `, about ${left < 10 ? left.toFixed(0) : (Math.round(left / 5) * 5).toFixed(0)} s left`
+                        : left > 0 ? ', almost done' : '';
+  return `Refining: ${percent} %${eta}`;
+}
+
 function renderProgress(viewer) {
   const s = viewer.state;
-  $('progress').textContent = s.total ? `frame ${s.frame} of ${s.total}` : 'no scene';
+  const status = statusLine(s);
+  const word = status.split(/[ :]/)[0];
+  if (page.statusWords.at(-1) !== word && page.statusWords.length < 50) page.statusWords.push(word);
+  $('progress').textContent = status;
   $('progress-fill').style.width = s.total ? `${(100 * s.frame) / s.total}%` : '0';
   $('progress-fill').classList.toggle('done', s.converged);
-  const lines = [`${s.renderWidth}×${s.renderHeight}` +
-                 (s.renderWidth !== s.canvasWidth ? ` of ${s.canvasWidth}×${s.canvasHeight}` : '') +
-                 ` · ${s.frameMs.toFixed(1)} ms/frame` +
-                 (s.split > 1 ? ` in ${s.parts} parts` : ` · ${s.stepsPerTick}/tick`)];
-  if (s.converged) lines.push(`converged in ${(s.convergedMs / 1000).toFixed(2)} s`);
-  // The total is an automatic view's expected frames: an estimate of the time left.
-  else if (s.total > s.frame && s.frameMs > 0) {
-    lines.push(`about ${(((s.total - s.frame) * s.frameMs) / 1000).toFixed(0)} s left`);
+  if (!s.total) {
+    $('detail').textContent = '';
+    return;
   }
+  const size = `${s.renderWidth}×${s.renderHeight}` +
+               (s.renderWidth !== s.canvasWidth ? ` of ${s.canvasWidth}×${s.canvasHeight}` : '');
+  const lines = [`frame ${s.frame} of ${s.total} · ${size} pixels · ${s.frameMs.toFixed(0)} ms a frame` +
+                 (s.split > 1 ? `, drawn in ${s.parts} parts` : '')];
+  if (s.converged) lines.push(`done in ${(s.convergedMs / 1000).toFixed(1)} s`);
   $('detail').textContent = lines.join('\n');
 }
 
@@ -165,7 +183,15 @@ function fillVariants(viewer) {
 }
 
 async function loadScene(viewer, source, options) {
-  const info = await viewer.loadScene(source, options);
+  const name = typeof source === 'string' ? source.split(/[?#]/)[0].split('/').pop()
+                                          : source?.name || 'the scene';
+  page.loading = name;
+  let info;
+  try {
+    info = await viewer.loadScene(source, options);
+  } finally {
+    page.loading = null;
+  }
   page.sceneName = info.name;
   fillPanel(viewer.settings);
   fillVariants(viewer);
