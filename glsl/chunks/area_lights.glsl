@@ -116,7 +116,7 @@ void evaluateAreaLight(AreaLight L, vec3 p, vec3 n, vec3 v, vec3 f0, float f90, 
   irradiance = areaLightIrradiance(L, p, n);
   specular = vec3(0.0);
   if (irradiance <= 0.0) return;
-  vec3 r = specularReflection(v, n);
+  vec3 r = reflect(-v, n);
   vec3 q = representativePoint(L, p, r);
   vec3 toQ = q - p;
   float dist = max(length(toQ), 1e-4);

@@ -30,8 +30,10 @@ float V_SmithGGXCorrelatedAnisotropic(float NoV, float NoL, float ToV, float BoV
 }
 #endif
 
-// The reflection direction of the base's specular lobe (bent toward the anisotropy's
-// stretch where the material has one).
+// The reflection direction the prefiltered environment is read along: bent toward the
+// anisotropy's stretch where the material has one. (Lights' representative points keep the
+// mirror direction: with the bent one, the brushed sphere of assets/extensions was 0.27 RMSE
+// from Cycles around its highlight instead of 0.19.)
 vec3 specularReflection(vec3 v, vec3 n) {
 #if PN_ANISOTROPY
   if (gAnisotropic) return reflect(-v, gBentNormal);
@@ -77,7 +79,7 @@ vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 f0, float f90, float alpha, float
 // surfaces, not to the disk.
 vec3 diskSpecular(vec3 n, vec3 v, vec3 f0, float f90, float alpha, vec4 disk) {
   vec3 centre = -disk.xyz;
-  vec3 r = specularReflection(v, n);
+  vec3 r = reflect(-v, n);
   vec3 toRay = dot(centre, r) * r - centre;
   vec3 lr = normalize(centre + toRay * min(1.0, disk.w / max(length(toRay), 1e-6)));
   float widened = min(1.0, alpha + 0.5 * disk.w);
