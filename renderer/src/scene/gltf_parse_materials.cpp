@@ -43,6 +43,23 @@ void extensionTexture(Parser& p, const json& e, const std::string& ep, const cha
   }
 }
 
+// A factor in [0, 1], clamped with a warning naming its path.
+float unitFactor(Parser& p, const json& e, const std::string& ep, const char* name, double def,
+                 LoadContext& ctx) {
+  const double f = p.number(e, name, ep, def);
+  if (f < 0.0 || f > 1.0) ctx.warn(ep + "." + name + ": outside [0, 1]; clamped");
+  return static_cast<float>(std::clamp(f, 0.0, 1.0));
+}
+
+// A colour in [0, 1]^3, clamped with a warning naming its path.
+glm::vec3 unitColour(Parser& p, const json& e, const std::string& ep, const char* name,
+                     glm::vec3 def, LoadContext& ctx) {
+  const glm::vec3 c = p.vec<3>(e, name, ep, def);
+  if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+    ctx.warn(ep + "." + name + ": outside [0, 1]; clamped");
+  return glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+}
+
 // KHR_materials_ior, KHR_materials_specular, KHR_materials_unlit, KHR_materials_clearcoat and
 // KHR_materials_sheen: factors and textures. Out-of-range values are clamped with a warning
 // naming the path.
@@ -64,9 +81,7 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
   }
   if (const json* e = p.object(ext, "KHR_materials_specular", path)) {
     const std::string ep = path + ".KHR_materials_specular";
-    const double f = p.number(*e, "specularFactor", ep, 1.0);
-    if (f < 0.0 || f > 1.0) ctx.warn(ep + ".specularFactor: outside [0, 1]; clamped");
-    m.specularFactor = static_cast<float>(std::clamp(f, 0.0, 1.0));
+    m.specularFactor = unitFactor(p, *e, ep, "specularFactor", 1.0, ctx);
     m.specularColorFactor =
         glm::max(p.vec<3>(*e, "specularColorFactor", ep, glm::vec3(1.0f)), glm::vec3(0.0f));
     extensionTexture(p, *e, ep, "specularTexture", TextureSlot::Specular, md, textureCount);
@@ -76,12 +91,8 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
   if (p.object(ext, "KHR_materials_unlit", path)) m.unlit = true;
   if (const json* e = p.object(ext, "KHR_materials_clearcoat", path)) {
     const std::string ep = path + ".KHR_materials_clearcoat";
-    const double c = p.number(*e, "clearcoatFactor", ep, 0.0);
-    const double r = p.number(*e, "clearcoatRoughnessFactor", ep, 0.0);
-    if (c < 0.0 || c > 1.0) ctx.warn(ep + ".clearcoatFactor: outside [0, 1]; clamped");
-    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".clearcoatRoughnessFactor: outside [0, 1]; clamped");
-    m.clearcoat = static_cast<float>(std::clamp(c, 0.0, 1.0));
-    m.clearcoatRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    m.clearcoat = unitFactor(p, *e, ep, "clearcoatFactor", 0.0, ctx);
+    m.clearcoatRoughness = unitFactor(p, *e, ep, "clearcoatRoughnessFactor", 0.0, ctx);
     extensionTexture(p, *e, ep, "clearcoatTexture", TextureSlot::Clearcoat, md, textureCount);
     extensionTexture(p, *e, ep, "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness, md,
                      textureCount);
@@ -94,14 +105,8 @@ void parseMaterialExtensions(Parser& p, const json& ext, const std::string& path
   }
   if (const json* e = p.object(ext, "KHR_materials_sheen", path)) {
     const std::string ep = path + ".KHR_materials_sheen";
-    const glm::vec3 c = p.vec<3>(*e, "sheenColorFactor", ep, glm::vec3(0.0f));
-    const double r = p.number(*e, "sheenRoughnessFactor", ep, 0.0);
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      ctx.warn(ep + ".sheenColorFactor: outside [0, 1]; clamped");
-    if (r < 0.0 || r > 1.0) ctx.warn(ep + ".sheenRoughnessFactor: outside [0, 1]; clamped");
-    m.sheenColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
-    m.sheenRoughness = static_cast<float>(std::clamp(r, 0.0, 1.0));
+    m.sheenColor = unitColour(p, *e, ep, "sheenColorFactor", glm::vec3(0.0f), ctx);
+    m.sheenRoughness = unitFactor(p, *e, ep, "sheenRoughnessFactor", 0.0, ctx);
     extensionTexture(p, *e, ep, "sheenColorTexture", TextureSlot::SheenColor, md, textureCount);
     extensionTexture(p, *e, ep, "sheenRoughnessTexture", TextureSlot::SheenRoughness, md,
                      textureCount);
@@ -116,9 +121,7 @@ void parseTransmission(Parser& p, const json& ext, const std::string& path, Mate
   Material& m = md.material;
   if (const json* e = p.object(ext, "KHR_materials_transmission", path)) {
     const std::string ep = path + ".KHR_materials_transmission";
-    const double t = p.number(*e, "transmissionFactor", ep, 0.0);
-    if (t < 0.0 || t > 1.0) ctx.warn(ep + ".transmissionFactor: outside [0, 1]; clamped");
-    m.transmission = static_cast<float>(std::clamp(t, 0.0, 1.0));
+    m.transmission = unitFactor(p, *e, ep, "transmissionFactor", 0.0, ctx);
     extensionTexture(p, *e, ep, "transmissionTexture", TextureSlot::Transmission, md, textureCount);
   }
   if (const json* e = p.object(ext, "KHR_materials_volume", path)) {
@@ -130,21 +133,9 @@ void parseTransmission(Parser& p, const json& ext, const std::string& path, Mate
     if (e->contains("attenuationDistance") && !(d > 0.0))
       ctx.warn(ep + ".attenuationDistance: not positive; no attenuation");
     m.attenuationDistance = d > 0.0 && std::isfinite(d) ? static_cast<float>(d) : 0.0f;
-    const glm::vec3 c = p.vec<3>(*e, "attenuationColor", ep, glm::vec3(1.0f));
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      ctx.warn(ep + ".attenuationColor: outside [0, 1]; clamped");
-    m.attenuationColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    m.attenuationColor = unitColour(p, *e, ep, "attenuationColor", glm::vec3(1.0f), ctx);
     extensionTexture(p, *e, ep, "thicknessTexture", TextureSlot::Thickness, md, textureCount);
   }
-}
-
-// A factor in [0, 1], clamped with a warning naming its path.
-float unitFactor(Parser& p, const json& e, const std::string& ep, const char* name, double def,
-                 LoadContext& ctx) {
-  const double f = p.number(e, name, ep, def);
-  if (f < 0.0 || f > 1.0) ctx.warn(ep + "." + name + ": outside [0, 1]; clamped");
-  return static_cast<float>(std::clamp(f, 0.0, 1.0));
 }
 
 // KHR_materials_dispersion, KHR_materials_iridescence, KHR_materials_anisotropy and
@@ -182,11 +173,8 @@ void parseLaterExtensions(Parser& p, const json& ext, const std::string& path, M
   if (const json* e = p.object(ext, "KHR_materials_diffuse_transmission", path)) {
     const std::string ep = path + ".KHR_materials_diffuse_transmission";
     m.diffuseTransmission = unitFactor(p, *e, ep, "diffuseTransmissionFactor", 0.0, ctx);
-    const glm::vec3 c = p.vec<3>(*e, "diffuseTransmissionColorFactor", ep, glm::vec3(1.0f));
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-        glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      ctx.warn(ep + ".diffuseTransmissionColorFactor: outside [0, 1]; clamped");
-    m.diffuseTransmissionColor = glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+    m.diffuseTransmissionColor =
+        unitColour(p, *e, ep, "diffuseTransmissionColorFactor", glm::vec3(1.0f), ctx);
     extensionTexture(p, *e, ep, "diffuseTransmissionTexture", TextureSlot::DiffuseTransmission, md,
                      textureCount);
     extensionTexture(p, *e, ep, "diffuseTransmissionColorTexture",
