@@ -69,16 +69,6 @@ vec3 areaShading(AreaLight A, Layers L) {
          L.coat * coatSpecular;
 }
 
-// The normal the shadow test offsets along: toward the light sample where the surface passes
-// light through to its other side (else the surface would shadow itself from behind).
-vec3 shadowNormal(vec3 toLight) {
-  vec3 n = normalize(vNormal);
-#if PN_DIFFUSE_TRANSMISSION
-  if (dot(n, toLight) < 0.0) n = -n;
-#endif
-  return n;
-}
-
 // The area-light samples, sorted by light: a light's unshadowed shading is the same for all of
 // its samples, so it is computed once (or read from the per-view cache) and only the
 // shadow-map visibility differs.

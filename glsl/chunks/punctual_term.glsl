@@ -78,14 +78,11 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
     }
 #endif
     float NoL = dot(n, l);
-    vec3 shadowN = normalize(vNormal);
-#if PN_DIFFUSE_TRANSMISSION
-    // Light from behind passes through (diffuse transmission): offset the shadow test toward it.
-    if (dot(shadowN, l) < 0.0) shadowN = -shadowN;
-#else
+#if !PN_DIFFUSE_TRANSMISSION
+    // (With diffuse transmission, light from behind passes through: no early out.)
     if (NoL <= 0.0 && (L.coat <= 0.0 || dot(L.coatN, l) <= 0.0)) continue;
 #endif
-    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, shadowN);
+    attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, shadowNormal(l));
     vec3 e = uPunctualColor[i] * attenuation;
     vec3 base = L.diffuseColor * (max(NoL, 0.0) * INV_PI) +
                 punctualLobe(n, L.v, l, L.f0, L.f90, L.alpha, uPunctualDisk[i]);

@@ -38,6 +38,17 @@ float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
 }
 #endif
 
+// The normal a shadow test offsets along: the interpolated one, turned toward the light where
+// the surface passes light through to its other side (KHR_materials_diffuse_transmission), else
+// a surface lit from behind would shadow itself.
+vec3 shadowNormal(vec3 toLight) {
+  vec3 n = normalize(vNormal);
+#if PN_DIFFUSE_TRANSMISSION
+  if (dot(n, toLight) < 0.0) n = -n;
+#endif
+  return n;
+}
+
 // index >= 0: shadow map `index`; -1: unshadowed; <= -2: point-light cube map -2 - index.
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
 #if PN_PUNCTUAL && PN_POINT_SHADOWS
