@@ -43,6 +43,8 @@ TEST(SceneInstancing, EveryCopyIsAnInstanceWithItsOwnTransform) {
   ASSERT_TRUE(scene.ok()) << scene.message();
   EXPECT_FALSE(hasWarning(*scene, "EXT_mesh_gpu_instancing"));
   ASSERT_EQ(scene->instances.size(), 3u);
+  // Marked as copies of their node: the renderer draws them as one instanced draw.
+  for (const Instance& inst : scene->instances) EXPECT_EQ(inst.copyOf, n);
   // The quad's corner (1, 1, 0) through each copy, then the node's translation (0, 1, 0).
   const auto corner = [&](size_t i) {
     return glm::vec3(scene->instances[i].world * glm::vec4(1, 1, 0, 1));

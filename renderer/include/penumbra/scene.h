@@ -234,6 +234,9 @@ struct Instance {
   // markup): those primitives are treated as the light's visible face, as castsShadow false
   // treats the whole node; the rest of the mesh (a lamp's shade) stays ordinary geometry.
   bool lampFace = false;
+  // EXT_mesh_gpu_instancing: the index of the node whose copies this is (-1: not a copy). The
+  // copies of one node share their mesh and are drawn together, one instanced draw per primitive.
+  int copyOf = -1;
 };
 
 struct Camera {

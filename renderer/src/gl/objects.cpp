@@ -119,6 +119,26 @@ void VertexArray::setConstant(int location, float x, float y, float z, float w) 
   constants_.push_back({location, {x, y, z, w}});
 }
 
+void VertexArray::setInstanceRows(int location, const Buffer* buffer, size_t offset,
+                                  int divisor) const {
+  glBindVertexArray(handle_.id());
+  constexpr GLsizei kStride = 12 * sizeof(float);
+  for (int row = 0; row < 3; ++row) {
+    const auto loc = static_cast<GLuint>(location + row);
+    if (buffer != nullptr) {
+      glBindBuffer(GL_ARRAY_BUFFER, buffer->id());
+      glEnableVertexAttribArray(loc);
+      glVertexAttribPointer(loc, 4, GL_FLOAT, GL_FALSE, kStride,
+                            reinterpret_cast<const void*>(offset + row * 4 * sizeof(float)));
+      glVertexAttribDivisor(loc, static_cast<GLuint>(divisor));
+    } else {
+      glDisableVertexAttribArray(loc);
+      glVertexAttrib4f(loc, row == 0 ? 1.0f : 0.0f, row == 1 ? 1.0f : 0.0f,
+                       row == 2 ? 1.0f : 0.0f, 0.0f);
+    }
+  }
+}
+
 void VertexArray::setIndexBuffer(const Buffer& buffer, IndexType type) {
   glBindVertexArray(handle_.id());
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer.id());

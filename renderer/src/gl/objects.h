@@ -52,6 +52,10 @@ class VertexArray {
   // A constant value for an attribute location with no buffer (e.g. missing vertex colours).
   void setConstant(int location, float x, float y, float z, float w);
   void setIndexBuffer(const Buffer& buffer, IndexType type);
+  // Per-instance rows of an affine 3x4 matrix at locations location..location+2, read from
+  // `buffer` at `offset` (three vec4 per instance, advancing every `divisor` instances), or,
+  // with no buffer, the identity as constant values. Changes the VAO, so each draw sets it.
+  void setInstanceRows(int location, const Buffer* buffer, size_t offset, int divisor) const;
   void bind() const;
   // Draws with the bound program: indexed when an index buffer is set, else arrays.
   void draw(Primitive mode, int count, size_t firstOrByteOffset = 0) const;

@@ -1,7 +1,10 @@
 #include "gpu/gpu_scene.h"
 
 #include <algorithm>
+#include <map>
+#include <span>
 #include <string>
+#include <tuple>
 
 #include "scene/mesh_lod.h"
 
@@ -91,12 +94,17 @@ Status GpuScene::uploadMeshes(const Scene& scene) {
   return {};
 }
 
-void GpuScene::buildDrawItems() {
+Status GpuScene::buildDrawItems() {
   const int defaultMaterial = static_cast<int>(materials_.size()) - 1;
   opaque_.clear();
   blended_.clear();
   transmissive_.clear();
   bounds_ = Bounds();
+  // Opaque primitives of one node's copies gather into one item: keyed by the node, the
+  // primitive and what changes the draw state (winding, shadow casting).
+  using CopyKey = std::tuple<int, const GpuPrimitive*, bool, bool>;
+  std::map<CopyKey, size_t> copyItem;                 // -> index in opaque_
+  std::vector<std::vector<glm::mat4>> copyWorlds;     // per index in opaque_ (copies only)
   for (const Instance& inst : instances_) {
     if (inst.mesh < 0 || inst.mesh >= static_cast<int>(meshes_.size())) continue;
     const glm::mat3 upper(inst.world);
@@ -109,19 +117,54 @@ void GpuScene::buildDrawItems() {
       item.model = inst.world;
       item.normalMatrix = normalMatrix;
       item.mirrored = glm::determinant(upper) < 0.0f;
-      const Material& pm = materials_[static_cast<size_t>(item.material)].source;
-      item.castsShadow = inst.castsShadow && !(inst.lampFace && pm.emits());
+      const Material& m = materials_[static_cast<size_t>(item.material)].source;
+      item.castsShadow = inst.castsShadow && !(inst.lampFace && m.emits());
       const Bounds wb = p->bounds.transformed(inst.world);
       if (wb.valid()) {
         bounds_.extend(wb);
         item.center = wb.center();
       }
-      const Material& m = materials_[static_cast<size_t>(item.material)].source;
       const bool blend = m.alphaMode == AlphaMode::Blend;
       const bool transmits = !blend && !m.unlit && m.transmission > 0.0f;
       item.layer = static_cast<int>(opaque_.size() + blended_.size() + transmissive_.size());
+      if (inst.copyOf >= 0 && !blend && !transmits) {
+        const CopyKey key{inst.copyOf, p, item.mirrored, item.castsShadow};
+        auto [it, added] = copyItem.emplace(key, opaque_.size());
+        if (added) {
+          item.model = glm::mat4(1.0f);
+          item.normalMatrix = glm::mat3(1.0f);
+          opaque_.push_back(item);
+          copyWorlds.resize(opaque_.size());
+        } else {
+          ++opaque_[it->second].copies;
+        }
+        copyWorlds[it->second].push_back(inst.world);
+        continue;
+      }
       (transmits ? transmissive_ : blend ? blended_ : opaque_).push_back(item);
     }
+  }
+  // The copies' world matrices as rows (x, y and z of the affine transform), item by item.
+  std::vector<float> rows;
+  for (size_t i = 0; i < copyWorlds.size(); ++i) {
+    if (copyWorlds[i].empty()) continue;
+    if (copyWorlds[i].size() == 1) {  // a node of one copy: an ordinary item
+      opaque_[i].model = copyWorlds[i][0];
+      opaque_[i].normalMatrix = glm::transpose(glm::inverse(glm::mat3(copyWorlds[i][0])));
+      continue;
+    }
+    opaque_[i].copyOffset = rows.size() * sizeof(float);
+    for (const glm::mat4& w : copyWorlds[i]) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) rows.push_back(w[c][r]);
+      }
+    }
+  }
+  copyRows_ = gl::Buffer();
+  if (!rows.empty()) {
+    auto buffer = gl::Buffer::create(gl::BufferKind::Vertex, std::span<const float>(rows));
+    if (!buffer) return buffer.error();
+    copyRows_ = std::move(*buffer);
   }
   // Grouped by material features: each group is drawn with one specialised program. (BLEND
   // surfaces keep the scene's order; frame 1 sorts them back to front anyway.)
@@ -130,6 +173,7 @@ void GpuScene::buildDrawItems() {
   };
   std::stable_sort(opaque_.begin(), opaque_.end(), byFeatures);
   std::stable_sort(transmissive_.begin(), transmissive_.end(), byFeatures);
+  return {};
 }
 
 Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
@@ -138,18 +182,21 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   PN_TRY(gs->uploadMaterials(scene));
   gs->instances_ = scene.instances;
   gs->variantCount_ = static_cast<int>(scene.variants.size());
-  gs->buildDrawItems();
+  PN_TRY(gs->buildDrawItems());
   return gs;
 }
 
-void GpuScene::selectVariant(int variant) {
+Status GpuScene::selectVariant(int variant) {
   for (auto& p : primitives_) {
     p->material = variantMaterial(p->ownMaterial, p->variantMaterials, variant);
   }
-  buildDrawItems();
+  return buildDrawItems();
 }
 
-void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item) {
+void GpuScene::bindTransform(const gl::Program& program, const DrawItem& item,
+                             int instancesPerCopy) const {
+  item.primitive->vao.setInstanceRows(kCopyRowsLocation, item.copies > 1 ? &copyRows_ : nullptr,
+                                      item.copyOffset, instancesPerCopy);
   program.set("uModel", item.model);
   program.set("uNormalMatrix", item.normalMatrix);
   program.set("uLayer", item.layer);

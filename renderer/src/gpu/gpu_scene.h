@@ -70,6 +70,9 @@ uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSl
 // clearcoat, sheen or textures would otherwise cost every pixel.
 gl::Defines materialDefines(uint32_t features);
 
+// mesh.vert's and shadow.vert's aCopyRow0..2: a copy's world matrix (DrawItem::copies).
+inline constexpr int kCopyRowsLocation = 6;
+
 struct DrawItem {
   const GpuPrimitive* primitive = nullptr;
   int material = 0;  // index into GpuScene::materials (the default material is last)
@@ -81,6 +84,12 @@ struct DrawItem {
   // Instance::castsShadow: false exactly for an area light's visible face
   // (extras.area_light_proxy), whose emission also lights nothing else (the light does).
   bool castsShadow = true;
+  // EXT_mesh_gpu_instancing: an opaque primitive of a node's copies is one item drawn `copies`
+  // times (model and normalMatrix the identity; each copy's world matrix as three rows at
+  // `copyOffset` in GpuScene's copy buffer). BLEND and transmissive copies stay one item each:
+  // they are sorted or composed per surface.
+  int copies = 1;
+  size_t copyOffset = 0;
 };
 
 class GpuScene {
@@ -96,7 +105,7 @@ class GpuScene {
   const Bounds& bounds() const { return bounds_; }
   // KHR_materials_variants: shows the variant's materials (-1: the primitives' own) by
   // rebuilding the draw lists; the buffers and textures stay.
-  void selectVariant(int variant);
+  Status selectVariant(int variant);
   int variantCount() const { return variantCount_; }
   size_t textureCount() const { return textures_.size(); }
 
@@ -109,8 +118,12 @@ class GpuScene {
     const Material& m = material(item.material).source;
     return m.alphaMode != AlphaMode::Opaque || m.transmission > 0.0f;
   }
-  // Sets uModel, uNormalMatrix, uLayer and uIndirectEmission of a draw item.
-  static void bindTransform(const gl::Program& program, const DrawItem& item);
+  // Sets uModel, uNormalMatrix, uLayer and uIndirectEmission of a draw item, and its copies'
+  // rows (mesh.vert's aCopy*; the identity for an item of one copy). A draw of the item then
+  // draws `instancesPerCopy * item.copies` instances, each copy `instancesPerCopy` times (a
+  // probe capture's six faces).
+  void bindTransform(const gl::Program& program, const DrawItem& item,
+                     int instancesPerCopy = 1) const;
 
  private:
   Result<const gl::Texture2D*> texture(const Scene& scene, const TextureRef& ref, bool srgb);
@@ -120,7 +133,7 @@ class GpuScene {
   // default material last), and the draw lists (opaque, BLEND, transmissive).
   Status uploadMeshes(const Scene& scene);
   Status uploadMaterials(const Scene& scene);
-  void buildDrawItems();
+  Status buildDrawItems();
 
   std::vector<std::unique_ptr<GpuPrimitive>> primitives_;  // per mesh, per primitive
   std::vector<std::vector<GpuPrimitive*>> meshes_;
@@ -130,6 +143,7 @@ class GpuScene {
   std::vector<DrawItem> blended_;
   std::vector<DrawItem> transmissive_;
   std::vector<Instance> instances_;
+  gl::Buffer copyRows_;  // DrawItem::copyOffset: three vec4 rows per copy
   int variantCount_ = 0;
   Bounds bounds_;
   // Bound to the material units a material leaves empty: WebGL rejects a draw whose sampler

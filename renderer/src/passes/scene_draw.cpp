@@ -8,9 +8,10 @@ void drawItem(const gl::Program& program, const GpuScene& scene, const DrawItem&
   state.cull = m.doubleSided ? gl::Cull::None : gl::Cull::Back;
   state.frontFaceClockwise = item.mirrored;
   gl::apply(state);
-  GpuScene::bindTransform(program, item);
+  scene.bindTransform(program, item);
   if (material) scene.bindMaterial(program, item.material);
-  item.primitive->vao.draw(gl::Primitive::Triangles, item.primitive->indexCount);
+  item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->indexCount,
+                                    item.copies);
 }
 
 void drawItems(const gl::Program& program, const GpuScene& scene,
@@ -25,11 +26,11 @@ void drawItemBothSides(const gl::Program& program, const GpuScene& scene, const 
   state.frontFaceClockwise = item.mirrored;  // gl_FrontFacing must still mean the front
   gl::apply(state);
   program.set("uSingleSided", m.doubleSided ? 0 : 1);
-  GpuScene::bindTransform(program, item);
+  scene.bindTransform(program, item, instances);
   scene.bindMaterial(program, item.material);
   // Only the probe captures draw this way: with the primitive's capture stand-in.
   item.primitive->vao.drawInstanced(gl::Primitive::Triangles, item.primitive->captureIndexCount,
-                                    instances, item.primitive->captureByteOffset);
+                                    instances * item.copies, item.primitive->captureByteOffset);
 }
 
 void drawItemsBothSides(const gl::Program& program, const GpuScene& scene,

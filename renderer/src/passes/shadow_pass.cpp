@@ -170,11 +170,12 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
           program.set("uCoverageStream", coverageStream);
           used = true;
         }
-        GpuScene::bindTransform(program, item);
+        scene.bindTransform(program, item);
         if (alpha) scene.bindMaterial(program, item.material);
         const GpuPrimitive& prim = *item.primitive;
-        prim.vao.draw(gl::Primitive::Triangles, standIns ? prim.captureIndexCount : prim.indexCount,
-                      standIns ? prim.captureByteOffset : 0);
+        prim.vao.drawInstanced(gl::Primitive::Triangles,
+                               standIns ? prim.captureIndexCount : prim.indexCount, item.copies,
+                               standIns ? prim.captureByteOffset : 0);
       }
     }
   }

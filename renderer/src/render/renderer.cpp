@@ -37,7 +37,7 @@ Status Renderer::setVariant(int index) {
                      std::to_string(impl_->scene->variantCount()));
   }
   gl::StateGuard guard(impl_->options.preserveHostState);
-  impl_->scene->selectVariant(index);
+  PN_TRY(impl_->scene->selectVariant(index));
   // Alpha cut-outs and transmission may differ: point-light shadow maps are drawn again; the
   // probes keep their places (the geometry is the same) but gather the new materials' light.
   if (impl_->pointShadows) impl_->pointShadows->invalidate();

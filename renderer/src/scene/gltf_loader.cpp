@@ -187,7 +187,9 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
         auto copies = gltf::instanceTransforms(doc, node, index, ctx);
         if (!copies.ok()) return copies.error();
         for (const glm::mat4& local : *copies) {
-          scene.instances.push_back(Instance{m, world * local, node.name, !node.lightProxy});
+          Instance copy{m, world * local, node.name, !node.lightProxy};
+          copy.copyOf = index;
+          scene.instances.push_back(std::move(copy));
         }
       } else {
         // A skinned mesh is posed in world space by its joints (gltf_skin.cpp).
