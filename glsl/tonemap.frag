@@ -3,9 +3,31 @@
 uniform sampler2D uRadiance;
 uniform float uExposureScale;  // 2^EV
 uniform int uToneMapper;
+// The viewport is larger than the image (a browser's render size below its canvas): the
+// displayed colours of the four nearest texels interpolated, as a filtered upscale of the
+// 8-bit image would be (float targets get no filtering from their sampler: RGBA32F is not
+// filterable in WebGL2), instead of hard pixel steps. Interpolating radiance before tone
+// mapping would put a bright edge's whole step into one pixel.
+uniform int uFiltered;
 in vec2 vUv;
 out vec4 fragColor;
+
+vec3 displayed(vec3 radiance) {
+  return linearToSrgb(toneMap(max(radiance * uExposureScale, vec3(0.0)), uToneMapper));
+}
+
 void main() {
-  vec3 c = texture(uRadiance, vUv).rgb * uExposureScale;
-  fragColor = vec4(linearToSrgb(toneMap(max(c, vec3(0.0)), uToneMapper)), 1.0);
+  if (uFiltered == 0) {
+    fragColor = vec4(displayed(texture(uRadiance, vUv).rgb), 1.0);
+    return;
+  }
+  ivec2 size = textureSize(uRadiance, 0);
+  vec2 p = vUv * vec2(size) - 0.5;
+  vec2 f = fract(p);
+  ivec2 i = ivec2(floor(p)), hi = size - 1;
+  vec3 a = displayed(texelFetch(uRadiance, clamp(i, ivec2(0), hi), 0).rgb);
+  vec3 b = displayed(texelFetch(uRadiance, clamp(i + ivec2(1, 0), ivec2(0), hi), 0).rgb);
+  vec3 c = displayed(texelFetch(uRadiance, clamp(i + ivec2(0, 1), ivec2(0), hi), 0).rgb);
+  vec3 d = displayed(texelFetch(uRadiance, clamp(i + ivec2(1, 1), ivec2(0), hi), 0).rgb);
+  fragColor = vec4(mix(mix(a, b, f.x), mix(c, d, f.x), f.y), 1.0);
 }

@@ -276,11 +276,55 @@ TEST(ImageRgbeTest, CorruptDataIsAnError) {
   }
   std::string forged = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n";
   auto huge = rgbe::decodeFile(std::vector<uint8_t>(forged.begin(), forged.end()), "forged.hdr");
-  EXPECT_FALSE(huge.ok());
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.message().find("100000x100000 pixels is more than the 268 million allowed"),
+            std::string::npos)
+      << huge.message();
   std::string xyze = "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n\x80\x80\x80\x80";
   auto unsupported = rgbe::decodeFile(std::vector<uint8_t>(xyze.begin(), xyze.end()), "xyz.hdr");
   ASSERT_FALSE(unsupported.ok());
   EXPECT_NE(unsupported.message().find("xyze"), std::string::npos);
+}
+
+// maxWidth: a wide image is box-filtered by an integer factor as it decodes; each output
+// pixel is the mean of its block (the last blocks take the remainder), so the mean radiance
+// and a bright spot's flux are kept.
+TEST(ImageRgbeTest, WideImagesAreBoxFilteredWhileDecoding) {
+  Image image(103, 50, 3, 0.25f);  // 103 = 3 x 34 + 1: the last column of blocks is wider
+  image.pixel(40, 20)[0] = 900.0f;  // a small sun in red
+  for (int x = 0; x < 103; ++x) image.pixel(x, 49)[1] = static_cast<float>(x) / 102.0f;
+  const std::vector<uint8_t> bytes = rgbe::encodeFile(image);
+  auto full = rgbe::decodeFile(bytes, "wide.hdr");
+  ASSERT_TRUE(full.ok());
+  auto small = rgbe::decodeFile(bytes, "wide.hdr", int64_t{1} << 28, 40);
+  ASSERT_TRUE(small.ok()) << small.message();
+  ASSERT_EQ(small->image.width, 34);  // factor 3 (103 / 40 rounded up)
+  ASSERT_EQ(small->image.height, 16);
+  const auto sum = [](const Image& im, int c) {
+    double s = 0;
+    for (int y = 0; y < im.height; ++y) {
+      for (int x = 0; x < im.width; ++x) s += im.pixel(x, y)[c];
+    }
+    return s;
+  };
+  // Means are kept where blocks are full; the flux of the spot through the block sizes.
+  EXPECT_NEAR(small->image.pixel(5, 5)[2], full->image.pixel(15, 15)[2], 1e-6);
+  EXPECT_NEAR(small->image.pixel(40 / 3, 20 / 3)[0] * 9.0,
+              full->image.pixel(40, 20)[0] + 8.0 * full->image.pixel(0, 0)[0], 1e-2);
+  // The total: each mean times its block's area (3 x 3, the last column 4 wide, the last row
+  // 5 tall), within RGBE's 1 % steps.
+  double total = 0;
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 34; ++x) {
+      total += small->image.pixel(x, y)[0] * (x == 33 ? 4 : 3) * (y == 15 ? 5 : 3);
+    }
+  }
+  EXPECT_NEAR(total, sum(full->image, 0), sum(full->image, 0) * 1e-4);
+  // Under the limit: unchanged.
+  auto same = rgbe::decodeFile(bytes, "wide.hdr", int64_t{1} << 28, 103);
+  ASSERT_TRUE(same.ok());
+  EXPECT_EQ(same->image.width, 103);
+  EXPECT_EQ(same->image.pixels, full->image.pixels);
 }
 
 }  // namespace

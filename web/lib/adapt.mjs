@@ -12,10 +12,14 @@
 //   whole (the first image comes soonest) and later frames take maxSplit. While the camera
 //   moves, frame 1 is never split: it must show in the animation frame that handled the input.
 // - Still scale: the largest scale whose predicted frame cost fits maxSplit budgets, in 5 %
-//   steps between min(minStillScale, resolutionScale) and resolutionScale (resolutionScale
-//   before any cost is known); chosen when the camera comes to rest (and on a new scene,
-//   canvas size or setting), and lowered at once when a still frame costs more than
-//   1.5 x maxSplit budgets.
+//   steps between a floor and resolutionScale (the floor before any cost is known); chosen
+//   when the camera comes to rest (and on a new scene, canvas size or setting), and
+//   lowered at once when a still frame costs more than 1.5 x maxSplit budgets. The floor is
+//   the canvas's CSS size (cssScale = 1 / pixel ratio: every pixel on a desktop, the CSS
+//   pixels of a high-DPR phone) or minStillScale if higher, and never above resolutionScale:
+//   a still image is not shown below the page's own resolution. (Its frames keep at most
+//   maxSplit parts: each band redraws the geometry, so more parts cost a heavy model more
+//   than they save; a slow device's parts then take longer than the budget.)
 // - Motion scale: when a gesture begins, at most the scale at which the last frame 1 predicts
 //   a frame 1 within the budget (x 0.9); while moving, frame 1 over budget shrinks it by
 //   sqrt(budget / time) x 0.9 (floor minMotionScale); under 40 % of the budget it grows by 15 %.
@@ -71,6 +75,9 @@ export function effectivePixelRatio({ pixelRatio, maxPixelRatio }, devicePixelRa
 
 export class Adaptation {
   motionScale = 1;
+  // The render scale at which the image has the canvas's CSS size (1 / pixel ratio); the still
+  // scale's floor. 0: none (node tests that leave it out).
+  cssScale = 0;
   stillScale = null;  // null until the first choice: resolutionScale
   #costs = [];        // ms per render pixel of the last still frames (n >= 2)
   #frame1 = null;     // ms per render pixel of the last frame 1
@@ -100,9 +107,12 @@ export class Adaptation {
   fitStillScale(settings, canvasPixels) {
     const cap = settings.resolutionScale;
     const cost = this.msPerPixel();
-    if (!settings.adaptiveResolution || cost === null || !(canvasPixels > 0)) return cap;
+    if (!settings.adaptiveResolution || !(canvasPixels > 0)) return cap;
+    const floor = Math.min(Math.max(this.#opts.minStillScale, this.cssScale), cap);
+    // Nothing measured (a new scene): the floor, which the first frames can never lower, so a
+    // load starts once; device pixels beyond it come at the next rest, once measured.
+    if (cost === null) return floor;
     const fit = Math.sqrt((settings.maxSplit * settings.budgetMs) / (cost * canvasPixels));
-    const floor = Math.min(this.#opts.minStillScale, cap);
     const stepped = Math.floor(fit / SCALE_STEP + 1e-9) * SCALE_STEP;
     return Math.min(cap, Math.max(floor, Number(stepped.toFixed(2))));
   }

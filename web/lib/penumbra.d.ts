@@ -68,8 +68,9 @@ export interface Settings {
   /** Render resolution / canvas resolution when the camera is still (0.1..2, default 1): an
    *  upper bound, which adaptiveResolution may lower. */
   resolutionScale?: number;
-  /** Lower the still resolution (down to minStillScale) when a frame costs more than maxSplit
-   *  budgets on this device (default true; false: always resolutionScale). */
+  /** Lower the still resolution (never below the canvas's CSS size, or minStillScale if
+   *  higher) when a frame costs more than maxSplit budgets on this device (default true;
+   *  false: always resolutionScale). */
   adaptiveResolution?: boolean;
   /** Most parts (bands of the image) a frame too slow for the budget is split into, drawn over
    *  several animation frames (1..64, default 8; 1: never split). */
@@ -102,7 +103,8 @@ export interface CreateOptions extends Settings {
   pixelRatio?: number;
   /** Caps devicePixelRatio when pixelRatio is not given (default 2). */
   maxPixelRatio?: number;
-  /** Lowest resolution scale adaptiveResolution picks for the still image (default 0.5). */
+  /** Lowest resolution scale adaptiveResolution picks for the still image (default 0.5); the
+   *  canvas's CSS size is the floor when it is higher (a desktop at pixel ratio 1: 1). */
   minStillScale?: number;
   /** Lowest resolution scale used while the camera moves (default 0.25). */
   minMotionScale?: number;
@@ -158,8 +160,13 @@ export interface CameraInfo {
 
 /** A read-back of the last complete frame at the render size: RGBA floats, row 0 at the top. */
 export interface PixelsResult {
+  /** The render size: the canvas's drawing buffer at rest on a desktop; on a high-DPR phone
+   * it may be lower (never below the canvas's CSS size), and lower still while moving. */
   width: number;
   height: number;
+  /** The canvas's drawing-buffer size at rest, which `present` fills (filtered upscaling). */
+  canvasWidth: number;
+  canvasHeight: number;
   /** Frames accumulated in it. */
   frames: number;
   data: Float32Array;

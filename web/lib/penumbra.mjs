@@ -21,7 +21,8 @@ import { provideDecoders } from './decoders.mjs';
 import { bindWasmApi, timeSteps } from './wasm_api.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { FrameLoop } from './loop.mjs';
-import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
+import { PenumbraError, fetchBytes, gatherScene, panoramaTooLarge, sourceName, toBytes }
+  from './staging.mjs';
 import { version } from './version.mjs';  // written by CMake from the project's version
 
 export { PenumbraError, version };
@@ -238,7 +239,10 @@ export class Viewer {
       bytes = await toBytes(source);
     }
     this.#check();
-    const file = (name || sourceName(source, 'environment.hdr')).replace(/[^\w.+-]/g, '_');
+    const shown = name || sourceName(source, 'environment.hdr');
+    const tooLarge = panoramaTooLarge(bytes, shown);
+    if (tooLarge) throw new PenumbraError(tooLarge);
+    const file = shown.replace(/[^\w.+-]/g, '_');
     const root = `/stage/${++stagingIds}`;
     try {
       this.#writeFile(`${root}/${file}`, bytes);
@@ -329,14 +333,17 @@ export class Viewer {
     });
   }
 
-  // The last complete frame at the render size as {width, height, frames, data}: RGBA floats,
-  // row 0 at the top; the linear radiance before exposure, or with {display: true} the image as
-  // displayed (exposure, tone mapping, sRGB; in [0, 1]). Hosts compare it with other renderers.
+  // The last complete frame at the render size as {width, height, frames, data, canvasWidth,
+  // canvasHeight}: RGBA floats, row 0 at the top; the linear radiance before exposure, or with
+  // {display: true} the image as displayed (exposure, tone mapping, sRGB; in [0, 1]). The render
+  // size is the canvas's drawing-buffer size at rest on a desktop, and may be lower on a
+  // high-DPR phone (never below the CSS size) or while moving: canvasWidth/Height say which.
   async readPixels({ display = false } = {}) {
     this.#check();
     const r = this.#call('pv_read', display ? 1 : 0);
     const data = new Float32Array(this.#mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
-    return { width: r.width, height: r.height, frames: r.frames, data };
+    return { width: r.width, height: r.height, frames: r.frames, data,
+             canvasWidth: this.#fullSize[0], canvasHeight: this.#fullSize[1] };
   }
 
   // Milliseconds per intermediate frame at the current size: one warm-up accumulation (shaders
@@ -547,6 +554,9 @@ export class Viewer {
     const moving = this.#isMoving(now);
     const js = this.#jsSettings;
     const canvasPixels = this.#fullSize[0] * this.#fullSize[1];
+    // The still image's floor: the canvas's CSS size (its layout size where the page shows it).
+    const css = this.#canvas.clientWidth;
+    this.#adapt.cssScale = css > 0 ? Math.min(1, css / this.#fullSize[0]) : 1 / this.#pixelRatio();
     if (moving) {
       if (!this.#wasMoving) this.#adapt.startMotion(js, canvasPixels);
       this.#wasMoving = true;

@@ -179,3 +179,27 @@ export function sourceName(source, fallback) {
   if (source && typeof source.name === 'string' && source.name) return source.name;
   return fallback;
 }
+
+// The largest panorama setEnvironment takes (pixels; 8192x4096). A bigger one is refused from
+// its header, before its bytes reach the wasm heap: decoding 128 million pixels blocked the
+// page for 20 s and ran out of memory. The wasm side applies the same limit
+// (viewer_main.cpp kMaxPanoramaPixels).
+export const MAX_PANORAMA_PIXELS = 8192 * 4096;
+
+// A Radiance (.hdr) file's size from its resolution line ("-Y H +X W"), or null when `bytes`
+// are not one. Only the header is looked at.
+export function radianceSize(bytes) {
+  if (bytes.length < 2 || bytes[0] !== 0x23 || bytes[1] !== 0x3f) return null;  // "#?"
+  const head = new TextDecoder('latin1').decode(bytes.subarray(0, Math.min(bytes.length, 65536)));
+  const m = /\n\n([-+]Y) (\d+) ([-+]X) (\d+)/.exec(head);
+  return m ? { width: Number(m[4]), height: Number(m[2]) } : null;
+}
+
+// The one-line refusal of a panorama over MAX_PANORAMA_PIXELS, naming the file, or null.
+export function panoramaTooLarge(bytes, name) {
+  const size = radianceSize(bytes);
+  if (!size || size.width * size.height <= MAX_PANORAMA_PIXELS) return null;
+  return `${name}: a ${size.width}x${size.height} panorama is more than the viewer's limit of ` +
+         '8192x4096 pixels; prefilter it with penumbra-prefilter (one small packed file) or ' +
+         'downscale it';
+}

@@ -157,11 +157,15 @@ Result<Viewer*> viewer() {
   return gViewer.get();
 }
 
-// The sun threshold in force when the file is loaded applies (settings.sunThreshold).
+// The sun threshold in force when the file is loaded applies (settings.sunThreshold). A
+// panorama is decoded box-filtered to 16 x 64 = 1024 pixels wide (kPanoramaWidthPerFace), and
+// one over 8192x4096 is refused (web/lib/staging.mjs refuses it before it reaches the heap).
+constexpr int64_t kMaxPanoramaPixels = int64_t{8192} * 4096;
 Result<PackedEnvironment> loadEnvironmentFile(const std::string& path, float sunThreshold) {
-  return loadEnvironment(
-      path,
-      {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples, .sunThreshold = sunThreshold});
+  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize,
+                                .samples = kPanoramaSamples,
+                                .sunThreshold = sunThreshold,
+                                .maxPanoramaPixels = kMaxPanoramaPixels});
 }
 
 std::string lowerExtension(const std::string& path) {

@@ -52,12 +52,13 @@ test('a frame is split into ceil(cost / budget) bands, at most maxSplit', () => 
 test('the still scale stays full on a fast device and follows the cost on a slow one', () => {
   const s = settings();
   const fast = new Adaptation();
-  assert.equal(fast.refit(s, PHONE), 1, 'nothing measured yet: full scale');
+  fast.cssScale = 0.5;
+  assert.equal(fast.refit(s, PHONE), 0.5, 'nothing measured yet: the floor (the CSS size)');
   still(fast, s, 40, PHONE);  // under maxSplit x budget = 96 ms
   assert.equal(fast.refit(s, PHONE), 1);
 
   const slow = new Adaptation();
-  slow.refit(s, PHONE);
+  slow.stillScale = 1;  // as if chosen at full scale
   // 250 ms a full frame: fits 96 ms at sqrt(96 / 250) = 0.62 -> 0.60 in 5 % steps.
   assert.equal(still(slow, s, 250, PHONE, 1), true, 'over 1.5 x 96 ms: lowered at once');
   assert.equal(slow.stillScale, 0.6);
@@ -87,17 +88,41 @@ test('the still scale has a floor (minStillScale), and resolutionScale stays an 
                              moving: false }), false);
 });
 
+test('the still image never drops below the canvas CSS size (cssScale)', () => {
+  const s = settings();
+  const desktop = new Adaptation();
+  desktop.cssScale = 1;  // pixel ratio 1: every drawing-buffer pixel is a CSS pixel
+  still(desktop, s, 3000, 1366 * 768);  // SwiftShader-slow: would fit 0.18
+  assert.equal(desktop.refit(s, 1366 * 768), 1, 'a desktop keeps every pixel');
+  assert.equal(still(desktop, s, 3000, 1366 * 768), false, 'and is never lowered');
+  const phone = new Adaptation();
+  phone.cssScale = 0.5;  // pixel ratio 2: the CSS size is half the buffer
+  still(phone, s, 3000, PHONE);
+  assert.equal(phone.refit(s, PHONE), 0.5);
+  const laptop = new Adaptation();
+  laptop.cssScale = 0.8;  // pixel ratio 1.25
+  still(laptop, s, 3000, PHONE);
+  assert.equal(laptop.refit(s, PHONE), 0.8);
+  // Where it affords more, more (device pixels as far as the budget allows).
+  const fast = new Adaptation();
+  fast.cssScale = 0.5;
+  still(fast, s, 150, PHONE);  // fits 96 ms at 0.8
+  assert.equal(fast.refit(s, PHONE), 0.8);
+  // A user's resolutionScale below the CSS size still wins.
+  assert.equal(desktop.refit(settings({ resolutionScale: 0.5 }), 1366 * 768), 0.5);
+});
+
 test('lowering during convergence needs more than 1.5 x maxSplit budgets; one spike is ignored', () => {
   const s = settings();
   const limit = s.maxSplit * s.budgetMs;
   const a = new Adaptation();
-  a.refit(s, 1e6);
+  a.stillScale = 1;  // chosen at full scale (a rest after frames were measured)
   assert.equal(still(a, s, limit * 1.2, 1e6, 3), false, 'slightly over: wait for the next rest');
   assert.equal(a.currentStillScale(s), 1);
   assert.ok(a.refit(s, 1e6) < 1, 'at the next rest it fits the budget');
 
   const b = new Adaptation();
-  b.refit(s, 1e6);
+  b.stillScale = 1;
   still(b, s, 50, 1e6, 2);
   const spike = b.frameDone(s, { frame: 4, ms: limit * REFIT_OVER * 3, renderPixels: 1e6,
                                  canvasPixels: 1e6, moving: false });

@@ -115,7 +115,8 @@ test('on a phone: capped pixel ratio, collapsed panel that closes by its control
               `smaller while moving: ${widths}`);
 
     // At rest the still image's scale comes from the measured cost: on SwiftShader a full
-    // frame of 780x1688 costs far more than maxSplit x budget, so it is lowered (to the floor).
+    // frame of 780x1688 costs far more than maxSplit x budget, so it is lowered, but never
+    // below the canvas's CSS size (390x844).
     await page.waitForFunction(() => window.penumbraPage.convergedCount > 0, null,
                                { timeout: CONVERGE_MS, polling: 100 });
     const still = await state(page);
@@ -125,6 +126,17 @@ test('on a phone: capped pixel ratio, collapsed panel that closes by its control
     assert.ok(still.stillScale < 1 && still.stillScale >= 0.5,
               `still scale ${still.stillScale} (fit ${fit.toFixed(2)})`);
     assert.equal(still.renderWidth, Math.round(780 * still.stillScale));
+    assert.ok(still.renderWidth >= 390 && still.renderHeight >= 844,
+              `at least the CSS size: ${still.renderWidth}x${still.renderHeight}`);
+    const read = await page.evaluate(async () => {
+      const r = await window.penumbraPage.viewer.readPixels();
+      return { width: r.width, canvasWidth: r.canvasWidth, canvasHeight: r.canvasHeight };
+    });
+    assert.deepEqual(read, { width: still.renderWidth, canvasWidth: 780, canvasHeight: 1688 },
+                     'readPixels says its size and the canvas it is shown on');
+    const hudAtRest = await box(page, '#hud');
+    assert.ok(hudAtRest.x >= 0 && hudAtRest.x + hudAtRest.width <= 390,
+              `the progress lines fit the screen: ${JSON.stringify(hudAtRest)}`);
     await page.screenshot({ path: join(outDir, 'phone.png') });
     await page.tap('#toggle-panel');
     assert.equal(await page.isVisible('#panel'), true, 'a tap on Settings opens the panel');
@@ -143,6 +155,27 @@ test('on a phone: capped pixel ratio, collapsed panel that closes by its control
     assert.equal(await page.isVisible('#panel'), true, 'Settings opens it again');
     await page.touchscreen.tap(60, 400);
     assert.equal(await page.isHidden('#panel'), true, 'a tap on the view closes the panel');
+  });
+  await browser.close();
+});
+
+test('on a desktop the still image has every canvas pixel, however slow the device', { timeout: TEST_MS }, async () => {
+  const desktop = { viewport: { width: 960, height: 540 }, deviceScaleFactor: 1 };
+  const { browser, page } = await open(desktop, '?frames=6');
+  await withReport(page, 'desktop-still', async () => {
+    // SwiftShader at 960x540: a frame costs several times maxSplit x budget, which used to
+    // halve the still resolution; now its parts take longer instead.
+    await page.waitForFunction(() => window.penumbraPage.convergedCount > 0, null,
+                               { timeout: CONVERGE_MS, polling: 100 });
+    const s = await state(page);
+    assert.equal(s.pixelRatio, 1);
+    assert.equal(s.stillScale, 1);
+    assert.deepEqual([s.renderWidth, s.renderHeight], [s.canvasWidth, s.canvasHeight]);
+    const r = await page.evaluate(async () => {
+      const p = await window.penumbraPage.viewer.readPixels();
+      return [p.width, p.height, p.canvasWidth, p.canvasHeight];
+    });
+    assert.deepEqual(r, [s.canvasWidth, s.canvasHeight, s.canvasWidth, s.canvasHeight]);
   });
   await browser.close();
 });

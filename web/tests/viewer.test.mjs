@@ -156,6 +156,24 @@ test('loads the default scene (Cornell box) and reaches m frames', { timeout: TE
   });
 });
 
+test('one start per load: a scene with ?env= and adaptive resolution draws frame 1 once', { timeout: TEST_MS }, async () => {
+  const pg = await openPage(`?frames=${FRAMES}&pixelRatio=1&panel=0&env=assets/env/studio_sky.hdr`);
+  await step('one-start', pg, async () => {
+    await pg.waitForFunction(() => window.penumbraPage.convergedCount > 0 ||
+                                   window.penumbraPage.errors.length > 0,
+                             null, { timeout: CONVERGE_MS, polling: 50 });
+    const s = await pageState(pg);
+    assert.deepEqual(s.errors, []);
+    const log = await pg.evaluate(() => window.penumbraPage.progressLog);
+    // Before: frame 1 with the studio light, again with the HDR, again at a lower resolution.
+    assert.equal(log.filter((f) => f === 1).length, 1, `one start: ${log}`);
+    assert.ok(log.every((f, i) => i === 0 || f >= log[i - 1]), `frames only climb: ${log}`);
+    assert.equal(s.renderWidth, s.canvasWidth, 'the still image has every canvas pixel');
+    assert.match(await pg.evaluate(() => window.penumbraPage.viewer.info.scene.environment), /studio_sky/);
+  });
+  await pg.close();
+});
+
 test('canvas matches native penumbra-render (same scene, camera, settings, size)', { timeout: TEST_MS }, async () => {
   assert.ok(shared.converged, 'needs the converged canvas of the previous test');
   await step('native', page, async () => {
@@ -294,6 +312,14 @@ test('a corrupt file, a failed fetch, a file another site does not share (CORS) 
                                              { name: 'teleport.gltf' })),
         setting: await outcome(v.setSettings({ frames: 0 })),
         badEnv: await outcome(v.setEnvironment(new Uint8Array([1, 2, 3]), { name: 'sky.hdr' })),
+        // A 16k x 8k panorama (its header; the size is what counts): refused at once, by name.
+        huge: await (async () => {
+          const head = new TextEncoder().encode(
+            '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n');
+          const t = performance.now();
+          const r = await outcome(v.setEnvironment(head, { name: 'huge_sky.hdr' }));
+          return { r, ms: performance.now() - t };
+        })(),
       };
     }, bad);
     // A model on another site whose server sends no CORS header: the message names CORS and
@@ -309,6 +335,8 @@ test('a corrupt file, a failed fetch, a file another site does not share (CORS) 
     assert.match(results.extension, /^PenumbraError: teleport\.gltf.*EXT_teleport/);
     assert.match(results.setting, /^PenumbraError: .*frames/);
     assert.match(results.badEnv, /^PenumbraError: .*sky\.hdr/);
+    assert.match(results.huge.r, /^PenumbraError: huge_sky\.hdr: a 16384x8192 panorama is more than the viewer's limit of 8192x4096 pixels; prefilter it with penumbra-prefilter/);
+    assert.ok(results.huge.ms < 1000, `refused without blocking the page: ${results.huge.ms} ms`);
     // Still rendering the previous scene, and the same image as before.
     const errors = (await pageState(page)).errors.length;
     await page.evaluate(() => {

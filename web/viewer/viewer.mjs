@@ -155,6 +155,8 @@ async function openFiles(viewer, fileList) {
                     files.find((f) => !ENV_EXT.test(f.name));  // unknown type: let the loader judge
   const envFiles = files.filter((f) => /\.hdr$/i.test(f.name) ||
                                        (!sceneFile && ENV_EXT.test(f.name)));
+  // One start per load: nothing is drawn until the scene and its environment are both set.
+  viewer.pause();
   try {
     if (sceneFile) {
       const resources = Object.fromEntries(files.filter((f) => f !== sceneFile).map((f) => [f.name, f]));
@@ -168,6 +170,8 @@ async function openFiles(viewer, fileList) {
   } catch (e) {
     $('msg-env')?.remove();
     showError(e);
+  } finally {
+    viewer.resume();
   }
 }
 
@@ -307,6 +311,9 @@ async function main() {
   fillPanel(viewer.settings);
 
   const sceneUrl = query.get('scene') || DEFAULT_SCENE;
+  // One start per load: the scene, its variant and ?env= are all set before frame 1 (drawing
+  // the studio-lit scene first and restarting for the HDR showed noise twice).
+  viewer.pause();
   try {
     await loadScene(viewer, sceneUrl);
     // ?variant=NAME: a KHR_materials_variants variant of the scene.
@@ -328,6 +335,7 @@ async function main() {
       $('msg-env')?.remove();
     }
   }
+  viewer.resume();
   page.ready = true;
 }
 

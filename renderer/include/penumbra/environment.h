@@ -3,6 +3,7 @@
 // or a constant environment for tests and scenes without one.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,14 @@ struct EnvironmentLoadOptions {
   float sunThreshold = -1.0f;  // RenderSettings::sunThreshold: -1 automatic, 0 off
   // Receives a warning when radiance had to be replaced (ibl::radianceVerdict); null: dropped.
   std::vector<std::string>* warnings = nullptr;
+  // A panorama with more pixels is refused with a message naming its size and this limit.
+  int64_t maxPanoramaPixels = int64_t{1} << 28;
 };
+
+// A Radiance panorama wider than this many times the face size is box-filtered down while it
+// decodes (ReadOptions::maxWidth): 16 panorama pixels per face edge is 4 per cube texel around
+// the equator, and an 8192x4096 file then costs its decoding, not 1.4 GB and 12 s.
+inline constexpr int kPanoramaWidthPerFace = 16;
 
 // True when the file starts like a packed environment (a Radiance header with PENUMBRA_ENV).
 bool isPackedEnvironmentFile(const std::string& path);

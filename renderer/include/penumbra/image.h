@@ -37,6 +37,9 @@ struct ReadOptions {
   bool srgbToLinear = true;
   // Refuse images with more pixels than this (bad input, not a crash).
   int64_t maxPixels = int64_t{1} << 28;
+  // > 0: a Radiance (.hdr) image wider than this is box-filtered down by an integer factor as it
+  // decodes (a panorama prefiltered to small faces needs no more; time and memory).
+  int maxWidth = 0;
 };
 
 struct WriteOptions {

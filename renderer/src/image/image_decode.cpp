@@ -133,7 +133,7 @@ Result<Image> readImageFromMemory(std::span<const uint8_t> bytes, const std::str
   const std::string where = "cannot read '" + nameForErrors + "': ";
   if (bytes.empty()) return makeError(where + "empty file");
   if (startsWith(bytes, {'#', '?'})) {
-    auto file = rgbe::decodeFile(bytes, nameForErrors, options.maxPixels);
+    auto file = rgbe::decodeFile(bytes, nameForErrors, options.maxPixels, options.maxWidth);
     if (!file) return file.error();  // "cannot read 'NAME': ..." already
     return std::move(file->image);
   }

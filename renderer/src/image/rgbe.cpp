@@ -95,6 +95,61 @@ bool expectToken(const std::string& s, size_t& pos, const char* token) {
   return true;
 }
 
+// One scanline of w RGBE pixels into `scan` (new-style RLE, flat, or flat with old-style
+// runs); false on truncated or corrupt data.
+bool decodeScanline(std::span<const uint8_t> bytes, Reader& in, int w, std::vector<uint8_t>& scan) {
+  const bool rle = w >= 8 && w < 32768 && in.left() >= 4 && bytes[in.pos] == 2 &&
+                   bytes[in.pos + 1] == 2 && (bytes[in.pos + 2] & 0x80) == 0;
+  if (rle) {
+    if (((bytes[in.pos + 2] << 8) | bytes[in.pos + 3]) != w) return false;
+    in.pos += 4;
+    for (int c = 0; c < 4; ++c) {
+      int x = 0;
+      while (x < w) {
+        if (in.atEnd()) return false;
+        int count = bytes[in.pos++];
+        if (count > 128) {
+          count -= 128;
+          if (count > w - x || in.atEnd()) return false;
+          const uint8_t v = bytes[in.pos++];
+          for (int k = 0; k < count; ++k) scan[static_cast<size_t>(x++) * 4 + c] = v;
+        } else {
+          if (count == 0 || count > w - x || in.left() < static_cast<size_t>(count)) {
+            return false;
+          }
+          for (int k = 0; k < count; ++k)
+            scan[static_cast<size_t>(x++) * 4 + c] = bytes[in.pos++];
+        }
+      }
+    }
+  } else {
+    // Flat quadruples, with old-style runs: (1, 1, 1, n) repeats the previous pixel
+    // n << shift times, consecutive run markers shifting by 8 more bits.
+    int x = 0;
+    int shift = 0;
+    while (x < w) {
+      if (in.left() < 4) return false;
+      const uint8_t* p = &bytes[in.pos];
+      in.pos += 4;
+      if (p[0] == 1 && p[1] == 1 && p[2] == 1) {
+        if (x == 0 || shift > 16) return false;
+        const int64_t count = static_cast<int64_t>(p[3]) << shift;
+        if (count > w - x) return false;
+        for (int64_t k = 0; k < count; ++k, ++x) {
+          std::memcpy(&scan[static_cast<size_t>(x) * 4], &scan[static_cast<size_t>(x - 1) * 4],
+                      4);
+        }
+        shift += 8;
+      } else {
+        std::memcpy(&scan[static_cast<size_t>(x) * 4], p, 4);
+        ++x;
+        shift = 0;
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void encodePixel(float r, float g, float b, uint8_t out[4]) {
@@ -179,7 +234,7 @@ std::vector<uint8_t> encodeFile(const Image& image, std::span<const std::string>
 }
 
 Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
-                               int64_t maxPixels) {
+                               int64_t maxPixels, int maxWidth) {
   const std::string where = "'" + nameForErrors + "'";
   Reader in{bytes};
   std::string line;
@@ -205,9 +260,14 @@ Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string
     return makeError("cannot read " + where + ": unsupported resolution line '" +
                      line.substr(0, 40) + "' (only '-Y H +X W')");
   }
-  if (w <= 0 || h <= 0 || static_cast<int64_t>(w) * h > maxPixels) {
+  if (w <= 0 || h <= 0) {
     return makeError("cannot read " + where + ": image size " + std::to_string(w) + "x" +
                      std::to_string(h) + " is out of range");
+  }
+  if (static_cast<int64_t>(w) * h > maxPixels) {
+    return makeError("cannot read " + where + ": " + std::to_string(w) + "x" + std::to_string(h) +
+                     " pixels is more than the " + std::to_string(maxPixels / 1000000) +
+                     " million allowed");
   }
   // Even fully run-length encoded data needs 2 bytes per 127 pixels and component; refusing
   // files far too short for their size keeps a forged header from allocating gigabytes.
@@ -215,64 +275,45 @@ Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string
     return makeError("cannot read " + where + ": truncated RGBE data");
   }
 
-  result.image = Image(w, h, 3);
+  // The box filter's factor and the decoded size.
+  const int shrink = maxWidth > 0 && w > maxWidth ? (w + maxWidth - 1) / maxWidth : 1;
+  const int ow = std::max(1, w / shrink), oh = std::max(1, h / shrink);
+  result.image = Image(ow, oh, 3, 0.0f);
   std::vector<uint8_t> scan(static_cast<size_t>(w) * 4);
   const auto corrupt = [&](int y) {
     return makeError("cannot read " + where + ": truncated or corrupt RGBE data at scanline " +
                      std::to_string(y));
   };
   for (int y = 0; y < h; ++y) {
-    const bool rle = w >= 8 && w < 32768 && in.left() >= 4 && bytes[in.pos] == 2 &&
-                     bytes[in.pos + 1] == 2 && (bytes[in.pos + 2] & 0x80) == 0;
-    if (rle) {
-      if (((bytes[in.pos + 2] << 8) | bytes[in.pos + 3]) != w) return corrupt(y);
-      in.pos += 4;
-      for (int c = 0; c < 4; ++c) {
-        int x = 0;
-        while (x < w) {
-          if (in.atEnd()) return corrupt(y);
-          int count = bytes[in.pos++];
-          if (count > 128) {
-            count -= 128;
-            if (count > w - x || in.atEnd()) return corrupt(y);
-            const uint8_t v = bytes[in.pos++];
-            for (int k = 0; k < count; ++k) scan[static_cast<size_t>(x++) * 4 + c] = v;
-          } else {
-            if (count == 0 || count > w - x || in.left() < static_cast<size_t>(count)) {
-              return corrupt(y);
-            }
-            for (int k = 0; k < count; ++k)
-              scan[static_cast<size_t>(x++) * 4 + c] = bytes[in.pos++];
-          }
-        }
-      }
-    } else {
-      // Flat quadruples, with old-style runs: (1, 1, 1, n) repeats the previous pixel
-      // n << shift times, consecutive run markers shifting by 8 more bits.
-      int x = 0;
-      int shift = 0;
-      while (x < w) {
-        if (in.left() < 4) return corrupt(y);
-        const uint8_t* p = &bytes[in.pos];
-        in.pos += 4;
-        if (p[0] == 1 && p[1] == 1 && p[2] == 1) {
-          if (x == 0 || shift > 16) return corrupt(y);
-          const int64_t count = static_cast<int64_t>(p[3]) << shift;
-          if (count > w - x) return corrupt(y);
-          for (int64_t k = 0; k < count; ++k, ++x) {
-            std::memcpy(&scan[static_cast<size_t>(x) * 4], &scan[static_cast<size_t>(x - 1) * 4],
-                        4);
-          }
-          shift += 8;
-        } else {
-          std::memcpy(&scan[static_cast<size_t>(x) * 4], p, 4);
-          ++x;
-          shift = 0;
-        }
+    if (!decodeScanline(bytes, in, w, scan)) return corrupt(y);
+    if (shrink == 1) {
+      float* row = result.image.pixel(0, y);
+      for (int x = 0; x < w; ++x) decodePixel(&scan[static_cast<size_t>(x) * 4], row + x * 3);
+      continue;
+    }
+    float* row = result.image.pixel(0, std::min(y / shrink, oh - 1));
+    for (int x = 0; x < w; ++x) {
+      float v[3];
+      decodePixel(&scan[static_cast<size_t>(x) * 4], v);
+      float* o = row + std::min(x / shrink, ow - 1) * 3;
+      o[0] += v[0];
+      o[1] += v[1];
+      o[2] += v[2];
+    }
+  }
+  if (shrink > 1) {
+    // Sums to means: square blocks, the last ones wider or taller by the remainder.
+    for (int oy = 0; oy < oh; ++oy) {
+      const int rows = oy == oh - 1 ? h - oy * shrink : shrink;
+      for (int ox = 0; ox < ow; ++ox) {
+        const int cols = ox == ow - 1 ? w - ox * shrink : shrink;
+        const float inv = 1.0f / static_cast<float>(rows * cols);
+        float* o = result.image.pixel(ox, oy);
+        o[0] *= inv;
+        o[1] *= inv;
+        o[2] *= inv;
       }
     }
-    float* row = result.image.pixel(0, y);
-    for (int x = 0; x < w; ++x) decodePixel(&scan[static_cast<size_t>(x) * 4], row + x * 3);
   }
   return result;
 }

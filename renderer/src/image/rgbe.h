@@ -36,8 +36,11 @@ struct DecodedFile {
   std::vector<std::string> headerLines;  // every header line after the "#?" line, in order
 };
 // Reads flat, new-style RLE and old-style RLE scanlines. Only the standard "-Y H +X W"
-// orientation is accepted. Errors name `nameForErrors`.
+// orientation is accepted. Errors name `nameForErrors`. With maxWidth > 0, an image wider than
+// that is box-filtered while it decodes, by the smallest integer factor k that brings its width
+// to at most maxWidth: (W / k) x (H / k) pixels, the last column and row of blocks taking the
+// remainder; no full-size image is ever held (an 8192x4096 panorama is 400 MB as floats).
 Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
-                               int64_t maxPixels = int64_t{1} << 28);
+                               int64_t maxPixels = int64_t{1} << 28, int maxWidth = 0);
 
 }  // namespace penumbra::rgbe

@@ -104,11 +104,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
                        caps.colorBufferHalfFloat);
   }
   // Exposure, tone mapping and sRGB of `radiance` into the bound framebuffer and viewport (the
-  // display target, or the canvas).
-  void drawToneMapped(const gl::Texture2D& radiance) {
+  // display target, or the canvas); `filtered`: the viewport is larger than the image, which is
+  // then interpolated between texels.
+  void drawToneMapped(const gl::Texture2D& radiance, bool filtered = false) {
     const gl::Program& p = tonemap->begin();
     radiance.bind(0);
     p.set("uRadiance", 0);
+    p.set("uFiltered", filtered ? 1 : 0);
     p.set("uExposureScale", std::exp2(settings.exposure));
     p.set("uToneMapper", static_cast<int>(settings.toneMapper));
     tonemap->draw();

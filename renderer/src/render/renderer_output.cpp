@@ -86,7 +86,8 @@ Status Renderer::present(const PresentTarget& target) {
   if (!radiance) return radiance.error();
   gl::Framebuffer::bindExternal(target.framebuffer);
   gl::setViewport(target.x, target.y, target.width, target.height);
-  impl_->drawToneMapped(**radiance);
+  impl_->drawToneMapped(**radiance, target.width > impl_->targets->width ||
+                                        target.height > impl_->targets->height);
   return gl::checkError("presenting to framebuffer " + std::to_string(target.framebuffer));
 }
 

@@ -64,7 +64,10 @@ Result<PackedEnvironment> loadEnvironment(const std::string& path,
     if (!verdict->empty() && options.warnings) options.warnings->push_back(*verdict);
     return env;
   }
-  auto image = readImage(path);
+  ReadOptions read;
+  read.maxPixels = options.maxPanoramaPixels;
+  read.maxWidth = kPanoramaWidthPerFace * options.faceSize;
+  auto image = readImage(path, read);
   if (!image) return image.error();
   return prefilterPanorama(*image, options, path);
 }
