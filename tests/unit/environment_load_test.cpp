@@ -49,6 +49,46 @@ TEST(EnvironmentLoad, AWidePanoramaIsFilteredWhileDecodingAndLightsTheSame) {
   }
 }
 
+TEST(EnvironmentLoad, InStepsItIsTheSameEnvironment) {
+  Image pano(256, 128, 3);
+  for (int y = 0; y < pano.height; ++y) {
+    for (int x = 0; x < pano.width; ++x) {
+      float* p = pano.pixel(x, y);
+      p[0] = 0.2f + static_cast<float>(x) / 256.0f;
+      p[1] = y < 40 ? 3.0f : 0.1f;
+      p[2] = 0.5f;
+    }
+  }
+  const std::string path = freshOutputDir("environment_steps") + "/steps.hdr";
+  writeBytes(path, rgbe::encodeFile(pano));
+  const EnvironmentLoadOptions options{.faceSize = 8, .samples = 16, .sunThreshold = 0.0f};
+  auto whole = loadEnvironment(path, options);
+  ASSERT_TRUE(whole.ok()) << whole.message();
+  auto loader = PanoramaLoader::start(path, options);
+  ASSERT_TRUE(loader.ok()) << loader.message();
+  EXPECT_EQ(loader->width(), 256);
+  int steps = 0;
+  while (!loader->done()) {
+    ASSERT_TRUE(loader->step(7).ok());
+    ++steps;
+  }
+  EXPECT_EQ(steps, (128 + 6) / 7);
+  auto stepped = loader->finish();
+  ASSERT_TRUE(stepped.ok()) << stepped.message();
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(stepped->sh.c[i], whole->sh.c[i]) << i;
+  EXPECT_EQ(stepped->specular.face(0, 2).pixels, whole->specular.face(0, 2).pixels);
+  // A truncated file fails at the step that reaches its end, naming it.
+  std::vector<uint8_t> bytes = rgbe::encodeFile(pano);
+  bytes.resize(bytes.size() * 2 / 3);
+  writeBytes(path, bytes);
+  auto cut = PanoramaLoader::start(path, options);
+  ASSERT_TRUE(cut.ok()) << cut.message();
+  Status st;
+  while (st.ok() && !cut->done()) st = cut->step(16);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("steps.hdr"), std::string::npos) << st.message();
+}
+
 TEST(EnvironmentLoad, APanoramaOverThePixelLimitIsRefusedByName) {
   const std::string head = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n";
   const std::string path = freshOutputDir("environment_limit") + "/huge_sky.hdr";

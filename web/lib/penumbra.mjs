@@ -18,11 +18,11 @@
 import createPenumbraViewerModule from './penumbra_viewer.js';
 import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
 import { provideDecoders } from './decoders.mjs';
-import { bindWasmApi, timeSteps } from './wasm_api.mjs';
+import { bindWasmApi, decodeInSteps, timeSteps } from './wasm_api.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { FrameLoop } from './loop.mjs';
-import { PenumbraError, fetchBytes, gatherScene, panoramaTooLarge, sourceName, toBytes }
-  from './staging.mjs';
+import { PenumbraError, STEPPED_PANORAMA_PIXELS, fetchBytes, gatherScene, panoramaTooLarge,
+  radianceSize, sourceName, toBytes } from './staging.mjs';
 import { version } from './version.mjs';  // written by CMake from the project's version
 
 export { PenumbraError, version };
@@ -53,6 +53,7 @@ export class Viewer {
   #previewed = false;          // this view's first picture (the preview) was drawn
   #frameWorkMs = 0; #tiles = 0;  // time of the frame's parts so far; bands set in wasm
   #wasMoving = false; #refit = true;  // choose the still scale at the next still tick
+  #envToken = 0;  // the last setEnvironment call (a stepped load stops when it is not)
   #loop; #running = false; #disposed = false; #lost = false; #dead = null;
   #resizeObserver = null;
   #sceneInfo = null; #report = ''; #context = '';
@@ -218,6 +219,7 @@ export class Viewer {
   // null to forget the one set here and light by the rule (black with lights, else the studio).
   async setEnvironment(source, { name } = {}) {
     this.#check();
+    const token = ++this.#envToken;  // a stepped load still running gives way to this one
     if (source === null || source === 'studio') {
       const state = this.#call('pv_set_builtin_environment', source === null ? 'default' : 'studio');
       if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
@@ -243,14 +245,24 @@ export class Viewer {
     const tooLarge = panoramaTooLarge(bytes, shown);
     if (tooLarge) throw new PenumbraError(tooLarge);
     const file = shown.replace(/[^\w.+-]/g, '_');
-    const root = `/stage/${++stagingIds}`;
-    try {
-      this.#writeFile(`${root}/${file}`, bytes);
-      const state = this.#call('pv_set_environment', root, file);
-      if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
-    } finally {
-      this.#pv.pv_remove_tree(root);
+    const size = radianceSize(bytes);
+    let state;
+    if (size && !size.packed && size.width * size.height > STEPPED_PANORAMA_PIXELS) {
+      // A large panorama decodes in steps, the page running between them.
+      this.#withHeapCopy(bytes, (ptr) => this.#call('pv_env_begin', ptr, bytes.length, file));
+      const stale = () => token !== this.#envToken || !this.#usable();
+      if (!await decodeInSteps((rows) => this.#call('pv_env_step', rows).done, stale)) return;
+      state = this.#call('pv_env_finish');
+    } else {
+      const root = `/stage/${++stagingIds}`;
+      try {
+        this.#writeFile(`${root}/${file}`, bytes);
+        state = this.#call('pv_set_environment', root, file);
+      } finally {
+        this.#pv.pv_remove_tree(root);
+      }
     }
+    if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
     this.#restarted();
   }
 
@@ -457,11 +469,16 @@ export class Viewer {
   }
 
   #writeFile(path, bytes) {
+    this.#withHeapCopy(bytes, (ptr) => this.#call('pv_write_file', path, ptr, bytes.length), path);
+  }
+
+  // Calls fn(ptr) with `bytes` copied into the wasm heap at ptr (freed after).
+  #withHeapCopy(bytes, fn, what = 'a file') {
     const ptr = this.#pv.pv_alloc(bytes.length);
-    if (!ptr && bytes.length) throw new PenumbraError(`out of memory staging ${path}`);
+    if (!ptr && bytes.length) throw new PenumbraError(`out of memory staging ${what}`);
     try {
       this.#mod.HEAPU8.set(bytes, ptr);
-      this.#call('pv_write_file', path, ptr, bytes.length);
+      return fn(ptr);
     } finally {
       this.#pv.pv_free(ptr);
     }

@@ -186,14 +186,20 @@ export function sourceName(source, fallback) {
 // (viewer_main.cpp kMaxPanoramaPixels).
 export const MAX_PANORAMA_PIXELS = 8192 * 4096;
 
-// A Radiance (.hdr) file's size from its resolution line ("-Y H +X W"), or null when `bytes`
-// are not one. Only the header is looked at.
+// A Radiance (.hdr) file's size from its resolution line ("-Y H +X W") and whether it is a
+// packed environment (penumbra-prefilter's PENUMBRA_ENV header key), or null when `bytes` are
+// not one. Only the header is looked at.
 export function radianceSize(bytes) {
   if (bytes.length < 2 || bytes[0] !== 0x23 || bytes[1] !== 0x3f) return null;  // "#?"
   const head = new TextDecoder('latin1').decode(bytes.subarray(0, Math.min(bytes.length, 65536)));
   const m = /\n\n([-+]Y) (\d+) ([-+]X) (\d+)/.exec(head);
-  return m ? { width: Number(m[4]), height: Number(m[2]) } : null;
+  if (!m) return null;
+  const header = head.slice(0, m.index);
+  return { width: Number(m[4]), height: Number(m[2]), packed: /\nPENUMBRA_ENV=/.test(header) };
 }
+
+// Panoramas of more pixels than this are decoded in steps between which the page runs.
+export const STEPPED_PANORAMA_PIXELS = 1024 * 512;
 
 // The one-line refusal of a panorama over MAX_PANORAMA_PIXELS, naming the file, or null.
 export function panoramaTooLarge(bytes, name) {

@@ -13,6 +13,8 @@ export function bindWasmApi(mod) {
     pv_load_scene: w('pv_load_scene', s, [s, s]),
     pv_set_environment: w('pv_set_environment', s, [s, s]),
     pv_set_uniform_environment: w('pv_set_uniform_environment', s, [n, n, n]),
+    pv_env_begin: w('pv_env_begin', s, [n, n, s]), pv_env_step: w('pv_env_step', s, [n]),
+    pv_env_finish: w('pv_env_finish', s, []),
     pv_set_builtin_environment: w('pv_set_builtin_environment', s, [s]),
     pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
     pv_settings_schema: w('pv_settings_schema', s, []),
@@ -45,4 +47,20 @@ export function timeSteps(pv, frames, syncEach) {
   }
   pv.pv_sync();
   return { frames: n, ms: performance.now() - t0 };
+}
+
+// Decodes a panorama begun with pv_env_begin in steps of about 50 ms, yielding to the page
+// between them: `step(rows)` decodes and returns true when done; `stale()` true stops early
+// (another environment was set). Returns true when it completed.
+export async function decodeInSteps(step, stale) {
+  let rows = 32;
+  for (let done = false; !done;) {
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    if (stale()) return false;
+    const t = performance.now();
+    done = step(rows);
+    const ms = performance.now() - t;
+    rows = Math.max(1, Math.min(4096, Math.round(rows * (ms > 0 ? 50 / ms : 2))));
+  }
+  return true;
 }

@@ -64,6 +64,9 @@ struct Viewer {
   std::string environmentName = "black";
   bool environmentFromUser = false;  // set through the API, not by a scene file
   std::string lastError;
+  // A panorama being decoded in steps (pv_env_begin / pv_env_step / pv_env_finish).
+  std::optional<PanoramaLoader> pendingPanorama;
+  std::string pendingPanoramaName;
   FramePart lastPart;  // what the last pv_step_part did
   Image readback;      // backs the pointer pv_read returns until the next pv_read
 };
@@ -321,6 +324,61 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char*
     if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
     (*v)->environment = std::move(*env);
     (*v)->environmentName = fs::path(path).filename().string();
+    (*v)->environmentFromUser = true;
+    return stateJson(**v);
+  });
+}
+
+// A large Radiance panorama in steps, so the page is never blocked for long: pv_env_begin
+// takes the file's `size` bytes at `data` (copied; not staged as a file: writing and reading
+// back 30 MB through the in-memory file system took 3 s) and reads its header ({width,
+// height} or {error}); pv_env_step decodes up to `rows` scanlines ({done} or {error});
+// pv_env_finish prefilters and sets it, as pv_set_environment does (the state, or {error}). A
+// new begin drops one in progress.
+EMSCRIPTEN_KEEPALIVE const char* pv_env_begin(const uint8_t* data, int size, const char* file) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    (*v)->pendingPanorama.reset();
+    auto loader = PanoramaLoader::start(
+        std::vector<uint8_t>(data, data + std::max(size, 0)), file,
+              {.faceSize = kPanoramaFaceSize,
+               .samples = kPanoramaSamples,
+               .sunThreshold = (*v)->settings.sunThreshold,
+               .maxPanoramaPixels = kMaxPanoramaPixels});
+    if (!loader) return errorJson(loader.message());
+    (*v)->pendingPanorama = std::move(*loader);
+    (*v)->pendingPanoramaName = file;
+    return {{"width", (*v)->pendingPanorama->width()}, {"height", (*v)->pendingPanorama->height()}};
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* pv_env_step(int rows) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (!(*v)->pendingPanorama) return errorJson("no panorama is being loaded");
+    if (auto st = (*v)->pendingPanorama->step(rows); !st) {
+      (*v)->pendingPanorama.reset();
+      return errorJson(st.message());
+    }
+    return {{"done", (*v)->pendingPanorama->done()}};
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* pv_env_finish() {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (!(*v)->pendingPanorama || !(*v)->pendingPanorama->done()) {
+      return errorJson("no decoded panorama to finish");
+    }
+    auto env = (*v)->pendingPanorama->finish();
+    (*v)->pendingPanorama.reset();
+    if (!env) return errorJson(env.message());
+    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
+    (*v)->environment = std::move(*env);
+    (*v)->environmentName = fs::path((*v)->pendingPanoramaName).filename().string();
     (*v)->environmentFromUser = true;
     return stateJson(**v);
   });

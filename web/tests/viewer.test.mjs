@@ -350,6 +350,43 @@ test('a corrupt file, a failed fetch, a file another site does not share (CORS) 
   });
 });
 
+test('a large panorama (8192x4096) loads in steps: no task blocks the page for a second', { timeout: TEST_MS }, async () => {
+  const pg = await openPage(QUERY);
+  await step('large-panorama', pg, async () => {
+    await waitConverged(pg, 0);
+    const r = await pg.evaluate(async () => {
+      // A run-length encoded 8192x4096 Radiance file (2 MB; every one of its 33.5 million
+      // pixels is decoded): a sky of radiance 1 over a ground of 0.25.
+      const w = 8192, h = 4096;
+      const head = new TextEncoder().encode(`#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y ${h} +X ${w}\n`);
+      const line = (e) => {
+        const out = [2, 2, w >> 8, w & 255];
+        for (const v of [128, 128, 128, e]) {
+          for (let left = w; left > 0; left -= Math.min(127, left)) out.push(128 + Math.min(127, left), v);
+        }
+        return out;
+      };
+      const sky = line(129), ground = line(127);
+      const bytes = new Uint8Array(head.length + h * sky.length);
+      bytes.set(head);
+      for (let y = 0; y < h; y++) bytes.set(y < h / 2 ? sky : ground, head.length + y * sky.length);
+      const tasks = [];
+      const po = new PerformanceObserver((l) => tasks.push(...l.getEntries().map((e) => e.duration)));
+      po.observe({ entryTypes: ['longtask'] });
+      const t = performance.now();
+      await window.penumbraPage.viewer.setEnvironment(bytes, { name: 'big_sky.hdr' });
+      const ms = performance.now() - t;
+      await new Promise((res) => setTimeout(res, 200));
+      po.disconnect();
+      return { ms, longest: Math.max(0, ...tasks), environment: window.penumbraPage.viewer.info.scene.environment };
+    });
+    assert.equal(r.environment, 'big_sky.hdr');
+    assert.ok(r.longest < 1000, `longest task ${r.longest.toFixed(0)} ms (load took ${r.ms.toFixed(0)} ms)`);
+    shared.largePanorama = r;
+  });
+  await pg.close();
+});
+
 test('every setting of the schema is set and read back through the JS API; the .d.ts lists them all', { timeout: TEST_MS }, async () => {
   // A page of its own: the shared page's later tests expect it idle and converged.
   const own = await openPage(QUERY);

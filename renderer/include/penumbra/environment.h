@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "penumbra/environment_format.h"
 #include "penumbra/error.h"
+#include "penumbra/image.h"
 
 namespace penumbra {
 
@@ -33,6 +35,38 @@ inline constexpr int kPanoramaWidthPerFace = 16;
 bool isPackedEnvironmentFile(const std::string& path);
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options = {});
+// A panorama already in memory (decoded in steps by the browser viewer), prefiltered as
+// loadEnvironment prefilters a panorama file: radiance checked (errors and warnings name
+// `name`), then faces of options.faceSize.
+Result<PackedEnvironment> environmentFromPanorama(Image& panorama,
+                                                  const EnvironmentLoadOptions& options,
+                                                  const std::string& name);
+// A Radiance (.hdr) panorama loaded in steps, for a caller that must not block (the browser
+// viewer yields to the page between steps): start() reads the file and its header (refusing
+// what loadEnvironment refuses), step() decodes some scanlines (box-filtered as loadEnvironment
+// does), finish() prefilters. The result equals loadEnvironment's for the same file.
+class PanoramaLoader {
+ public:
+  static Result<PanoramaLoader> start(const std::string& path,
+                                      const EnvironmentLoadOptions& options);
+  // The file's bytes, already in memory (`name` in messages).
+  static Result<PanoramaLoader> start(std::vector<uint8_t> bytes, const std::string& name,
+                                      const EnvironmentLoadOptions& options);
+  PanoramaLoader(PanoramaLoader&&) noexcept;
+  PanoramaLoader& operator=(PanoramaLoader&&) noexcept;
+  ~PanoramaLoader();
+  int width() const;  // the file's
+  int height() const;
+  bool done() const;
+  Status step(int rows);
+  Result<PackedEnvironment> finish();
+
+ private:
+  PanoramaLoader();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // A uniform environment of the given radiance (white furnace, or a neutral default).
 PackedEnvironment uniformEnvironment(const glm::vec3& radiance, int faceSize = 8);
 // The neutral studio environment (assets/env/studio.hdr, compiled into the library: grey, two

@@ -233,15 +233,17 @@ std::vector<uint8_t> encodeFile(const Image& image, std::span<const std::string>
   return out;
 }
 
-Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
+Result<Decoder> Decoder::start(std::vector<uint8_t> bytes, const std::string& nameForErrors,
                                int64_t maxPixels, int maxWidth) {
-  const std::string where = "'" + nameForErrors + "'";
-  Reader in{bytes};
+  Decoder d;
+  d.bytes_ = std::move(bytes);
+  d.where_ = "'" + nameForErrors + "'";
+  const std::string& where = d.where_;
+  Reader in{d.bytes_};
   std::string line;
   if (!in.line(line) || line.size() < 2 || line[0] != '#' || line[1] != '?') {
     return makeError("cannot read " + where + ": not a Radiance RGBE (.hdr) file");
   }
-  DecodedFile result;
   for (;;) {
     if (!in.line(line)) return makeError("cannot read " + where + ": truncated Radiance header");
     if (line.empty()) break;
@@ -249,7 +251,7 @@ Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string
       return makeError("cannot read " + where + ": unsupported Radiance format '" + line.substr(7) +
                        "' (only 32-bit_rle_rgbe)");
     }
-    result.headerLines.push_back(line);
+    d.result_.headerLines.push_back(line);
   }
   if (!in.line(line)) return makeError("cannot read " + where + ": missing resolution line");
   size_t pos = 0;
@@ -274,48 +276,73 @@ Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string
   if (static_cast<int64_t>(in.left()) * 127 < static_cast<int64_t>(w) * h) {
     return makeError("cannot read " + where + ": truncated RGBE data");
   }
-
+  d.pos_ = in.pos;
+  d.width_ = w;
+  d.height_ = h;
   // The box filter's factor and the decoded size.
-  const int shrink = maxWidth > 0 && w > maxWidth ? (w + maxWidth - 1) / maxWidth : 1;
-  const int ow = std::max(1, w / shrink), oh = std::max(1, h / shrink);
-  result.image = Image(ow, oh, 3, 0.0f);
-  std::vector<uint8_t> scan(static_cast<size_t>(w) * 4);
-  const auto corrupt = [&](int y) {
-    return makeError("cannot read " + where + ": truncated or corrupt RGBE data at scanline " +
-                     std::to_string(y));
-  };
-  for (int y = 0; y < h; ++y) {
-    if (!decodeScanline(bytes, in, w, scan)) return corrupt(y);
-    if (shrink == 1) {
-      float* row = result.image.pixel(0, y);
-      for (int x = 0; x < w; ++x) decodePixel(&scan[static_cast<size_t>(x) * 4], row + x * 3);
+  d.shrink_ = maxWidth > 0 && w > maxWidth ? (w + maxWidth - 1) / maxWidth : 1;
+  d.result_.image = Image(std::max(1, w / d.shrink_), std::max(1, h / d.shrink_), 3, 0.0f);
+  d.scan_.resize(static_cast<size_t>(w) * 4);
+  return d;
+}
+
+Status Decoder::step(int rows) {
+  Reader in{bytes_, pos_};
+  const int w = width_, k = shrink_;
+  Image& image = result_.image;
+  const int ow = image.width, oh = image.height;
+  for (int end = std::min(height_, row_ + std::max(rows, 1)); row_ < end; ++row_) {
+    if (!decodeScanline(bytes_, in, w, scan_)) {
+      return makeError("cannot read " + where_ + ": truncated or corrupt RGBE data at scanline " +
+                       std::to_string(row_));
+    }
+    if (k == 1) {
+      float* row = image.pixel(0, row_);
+      for (int x = 0; x < w; ++x) decodePixel(&scan_[static_cast<size_t>(x) * 4], row + x * 3);
       continue;
     }
-    float* row = result.image.pixel(0, std::min(y / shrink, oh - 1));
+    float* row = image.pixel(0, std::min(row_ / k, oh - 1));
     for (int x = 0; x < w; ++x) {
       float v[3];
-      decodePixel(&scan[static_cast<size_t>(x) * 4], v);
-      float* o = row + std::min(x / shrink, ow - 1) * 3;
+      decodePixel(&scan_[static_cast<size_t>(x) * 4], v);
+      float* o = row + std::min(x / k, ow - 1) * 3;
       o[0] += v[0];
       o[1] += v[1];
       o[2] += v[2];
     }
   }
-  if (shrink > 1) {
+  pos_ = in.pos;
+  return {};
+}
+
+DecodedFile Decoder::finish() {
+  PN_CHECK(done(), "rgbe::Decoder::finish before every row was decoded");
+  Image& image = result_.image;
+  if (shrink_ > 1) {
     // Sums to means: square blocks, the last ones wider or taller by the remainder.
-    for (int oy = 0; oy < oh; ++oy) {
-      const int rows = oy == oh - 1 ? h - oy * shrink : shrink;
-      for (int ox = 0; ox < ow; ++ox) {
-        const int cols = ox == ow - 1 ? w - ox * shrink : shrink;
+    for (int oy = 0; oy < image.height; ++oy) {
+      const int rows = oy == image.height - 1 ? height_ - oy * shrink_ : shrink_;
+      for (int ox = 0; ox < image.width; ++ox) {
+        const int cols = ox == image.width - 1 ? width_ - ox * shrink_ : shrink_;
         const float inv = 1.0f / static_cast<float>(rows * cols);
-        float* o = result.image.pixel(ox, oy);
+        float* o = image.pixel(ox, oy);
         o[0] *= inv;
         o[1] *= inv;
         o[2] *= inv;
       }
     }
   }
-  return result;
+  bytes_.clear();
+  return std::move(result_);
+}
+
+Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
+                               int64_t maxPixels, int maxWidth) {
+  auto d = Decoder::start(std::vector<uint8_t>(bytes.begin(), bytes.end()), nameForErrors,
+                          maxPixels, maxWidth);
+  if (!d) return d.error();
+  PN_TRY(d->step(d->height()));
+  return d->finish();
 }
 
 }  // namespace penumbra::rgbe

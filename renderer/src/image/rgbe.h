@@ -43,4 +43,29 @@ struct DecodedFile {
 Result<DecodedFile> decodeFile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
                                int64_t maxPixels = int64_t{1} << 28, int maxWidth = 0);
 
+// The same decoding in steps: start() reads the header (and refuses what decodeFile refuses),
+// each step() decodes some scanlines, finish() returns the image. A caller on a UI thread (the
+// browser viewer) yields between steps, so a large panorama never blocks it for long.
+class Decoder {
+ public:
+  static Result<Decoder> start(std::vector<uint8_t> bytes, const std::string& nameForErrors,
+                               int64_t maxPixels = int64_t{1} << 28, int maxWidth = 0);
+  int width() const { return width_; }    // the file's
+  int height() const { return height_; }
+  int rowsDone() const { return row_; }
+  bool done() const { return row_ >= height_; }
+  // Decodes up to `rows` more scanlines (at least one); an error names the file and scanline.
+  Status step(int rows);
+  // After done(): the image (box-filtered with maxWidth) and the header lines.
+  DecodedFile finish();
+
+ private:
+  std::vector<uint8_t> bytes_;
+  std::string where_;
+  size_t pos_ = 0;
+  int width_ = 0, height_ = 0, row_ = 0, shrink_ = 1;
+  std::vector<uint8_t> scan_;
+  DecodedFile result_;
+};
+
 }  // namespace penumbra::rgbe

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <span>
 
+#include "image/image_internal.h"
 #include "image/rgbe.h"
 #include "penumbra/ibl.h"
 #include "penumbra/image.h"
@@ -41,6 +42,12 @@ Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadO
 
 }  // namespace
 
+Result<PackedEnvironment> environmentFromPanorama(Image& panorama,
+                                                  const EnvironmentLoadOptions& options,
+                                                  const std::string& name) {
+  return prefilterPanorama(panorama, options, name);
+}
+
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options) {
   if (isPackedEnvironmentFile(path)) {
@@ -78,6 +85,45 @@ Result<PackedEnvironment> studioEnvironment(const EnvironmentLoadOptions& option
   auto env = prefilterPanorama(file->image, options, "studio environment");
   if (env) env->generator = std::string("penumbra ") + version() + " studio";
   return env;
+}
+
+struct PanoramaLoader::Impl {
+  rgbe::Decoder decoder;
+  EnvironmentLoadOptions options;
+  std::string path;
+};
+
+PanoramaLoader::PanoramaLoader() = default;
+PanoramaLoader::PanoramaLoader(PanoramaLoader&&) noexcept = default;
+PanoramaLoader& PanoramaLoader::operator=(PanoramaLoader&&) noexcept = default;
+PanoramaLoader::~PanoramaLoader() = default;
+
+Result<PanoramaLoader> PanoramaLoader::start(const std::string& path,
+                                             const EnvironmentLoadOptions& options) {
+  auto bytes = detail::readFileBytes(path);
+  if (!bytes) return bytes.error();
+  return start(std::move(*bytes), path, options);
+}
+
+Result<PanoramaLoader> PanoramaLoader::start(std::vector<uint8_t> bytes, const std::string& name,
+                                             const EnvironmentLoadOptions& options) {
+  auto decoder = rgbe::Decoder::start(std::move(bytes), name, options.maxPanoramaPixels,
+                                      kPanoramaWidthPerFace * options.faceSize);
+  if (!decoder) return decoder.error();
+  PanoramaLoader loader;
+  loader.impl_ = std::make_unique<Impl>(Impl{std::move(*decoder), options, name});
+  return loader;
+}
+
+int PanoramaLoader::width() const { return impl_->decoder.width(); }
+int PanoramaLoader::height() const { return impl_->decoder.height(); }
+bool PanoramaLoader::done() const { return impl_->decoder.done(); }
+Status PanoramaLoader::step(int rows) { return impl_->decoder.step(rows); }
+
+Result<PackedEnvironment> PanoramaLoader::finish() {
+  PN_CHECK(done(), "PanoramaLoader::finish before every row was decoded");
+  rgbe::DecodedFile file = impl_->decoder.finish();
+  return prefilterPanorama(file.image, impl_->options, impl_->path);
 }
 
 PackedEnvironment uniformEnvironment(const glm::vec3& radiance, int faceSize) {
