@@ -22,19 +22,8 @@ SEG_U, SEG_V = 256, 224
 WAVES = 24
 
 
-class Lcg:
-    """Numerical Recipes LCG; deterministic everywhere."""
-
-    def __init__(self, seed):
-        self.s = seed & 0xFFFFFFFF
-
-    def next(self):
-        self.s = (1664525 * self.s + 1013904223) & 0xFFFFFFFF
-        return self.s / 4294967296.0
-
-
 def waves():
-    rng = Lcg(20240611)
+    rng = gb.Lcg(20240611)
     out = []
     for k in range(WAVES):
         z = 2.0 * rng.next() - 1.0

@@ -18,17 +18,6 @@ GRID = 48
 SPACING = 0.75
 
 
-class Lcg:
-    """Numerical Recipes LCG; deterministic everywhere."""
-
-    def __init__(self, seed):
-        self.s = seed & 0xFFFFFFFF
-
-    def next(self):
-        self.s = (1664525 * self.s + 1013904223) & 0xFFFFFFFF
-        return self.s / 4294967296.0
-
-
 def instance_accessor(b, rows, type_):
     """A float32 accessor of per-instance values: a view without a vertex-buffer target."""
     flat = [c for r in rows for c in r]
@@ -39,7 +28,7 @@ def instance_accessor(b, rows, type_):
 
 
 def copies():
-    rng = Lcg(20261128)
+    rng = gb.Lcg(20261128)
     t, r, s = [], [], []
     half = (GRID - 1) * SPACING / 2.0
     for j in range(GRID):

@@ -23,6 +23,18 @@ ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
 _NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 
 
+class Lcg:
+    """Numerical Recipes LCG: a fixed-seed sequence in [0, 1) that cannot change with the
+    Python version (the generators' randomness)."""
+
+    def __init__(self, seed):
+        self.s = seed & 0xFFFFFFFF
+
+    def next(self):
+        self.s = (1664525 * self.s + 1013904223) & 0xFFFFFFFF
+        return self.s / 4294967296.0
+
+
 def num(x, digits=6):
     """Round for JSON so output does not depend on float noise; never -0.0."""
     r = round(float(x), digits)
