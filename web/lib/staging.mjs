@@ -180,11 +180,11 @@ export function sourceName(source, fallback) {
   return fallback;
 }
 
-// The largest panorama setEnvironment takes (pixels; 8192x4096). A bigger one is refused from
-// its header, before its bytes reach the wasm heap: decoding 128 million pixels blocked the
-// page for 20 s and ran out of memory. The wasm side applies the same limit
+// The largest panorama setEnvironment takes (its pixel count is the limit). A bigger one is
+// refused from its header, before its bytes reach the wasm heap: decoding 128 million pixels
+// blocked the page for 20 s and ran out of memory. The wasm side applies the same limit
 // (viewer_main.cpp kMaxPanoramaPixels).
-export const MAX_PANORAMA_PIXELS = 8192 * 4096;
+export const MAX_PANORAMA = { width: 8192, height: 4096 };
 
 // A Radiance (.hdr) file's size from its resolution line ("-Y H +X W") and whether it is a
 // packed environment (penumbra-prefilter's PENUMBRA_ENV header key), or null when `bytes` are
@@ -201,11 +201,12 @@ export function radianceSize(bytes) {
 // Panoramas of more pixels than this are decoded in steps between which the page runs.
 export const STEPPED_PANORAMA_PIXELS = 1024 * 512;
 
-// The one-line refusal of a panorama over MAX_PANORAMA_PIXELS, naming the file, or null.
+// The one-line refusal of a panorama over MAX_PANORAMA's pixels, naming the file, or null.
 export function panoramaTooLarge(bytes, name) {
   const size = radianceSize(bytes);
-  if (!size || size.width * size.height <= MAX_PANORAMA_PIXELS) return null;
+  const { width, height } = MAX_PANORAMA;
+  if (!size || size.width * size.height <= width * height) return null;
   return `${name}: a ${size.width}x${size.height} panorama is more than the viewer's limit of ` +
-         '8192x4096 pixels; prefilter it with penumbra-prefilter (one small packed file) or ' +
-         'downscale it';
+         `${width}x${height} pixels; prefilter it with penumbra-prefilter (one small packed ` +
+         'file) or downscale it';
 }

@@ -160,15 +160,16 @@ Result<Viewer*> viewer() {
   return gViewer.get();
 }
 
-// The sun threshold in force when the file is loaded applies (settings.sunThreshold). A
-// panorama is decoded box-filtered to 16 x 64 = 1024 pixels wide (kPanoramaWidthPerFace), and
-// one over 8192x4096 is refused (web/lib/staging.mjs refuses it before it reaches the heap).
+// How the viewer prefilters a panorama, whether set through the API or named by a scene file:
+// decoded box-filtered to 16 x 64 = 1024 pixels wide (kPanoramaWidthPerFace), one over
+// 8192x4096 refused (web/lib/staging.mjs refuses it before it reaches the heap), with the sun
+// threshold in force when the file is loaded (settings.sunThreshold).
 constexpr int64_t kMaxPanoramaPixels = int64_t{8192} * 4096;
-Result<PackedEnvironment> loadEnvironmentFile(const std::string& path, float sunThreshold) {
-  return loadEnvironment(path, {.faceSize = kPanoramaFaceSize,
-                                .samples = kPanoramaSamples,
-                                .sunThreshold = sunThreshold,
-                                .maxPanoramaPixels = kMaxPanoramaPixels});
+EnvironmentLoadOptions panoramaOptions(float sunThreshold) {
+  return {.faceSize = kPanoramaFaceSize,
+          .samples = kPanoramaSamples,
+          .sunThreshold = sunThreshold,
+          .maxPanoramaPixels = kMaxPanoramaPixels};
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -192,7 +193,7 @@ json loadScene(Viewer& v, const std::string& path) {
   // wasm32 memory tops out at 2 GiB; textures are kept up to what the device takes.
   request.memoryBudgetBytes = int64_t{768} << 20;
   request.maxTextureSize = std::max(1, v.renderer->maxTextureSize());
-  request.panorama = {.faceSize = kPanoramaFaceSize, .samples = kPanoramaSamples};
+  request.panorama = panoramaOptions(-1.0f);  // the scene's settings decide the sun
   if (keepEnvironment) request.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::None};
   auto job = RenderJob::load(request);
   if (!job) return errorJson(job.message());
@@ -319,7 +320,7 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char*
     InFolder here(dir);
     if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
     const std::string path = file;
-    auto env = loadEnvironmentFile(path, (*v)->settings.sunThreshold);
+    auto env = loadEnvironment(path, panoramaOptions((*v)->settings.sunThreshold));
     if (!env) return errorJson(env.message());
     if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
     (*v)->environment = std::move(*env);
@@ -340,12 +341,8 @@ EMSCRIPTEN_KEEPALIVE const char* pv_env_begin(const uint8_t* data, int size, con
     auto v = viewer();
     if (!v) return errorJson(v.message());
     (*v)->pendingPanorama.reset();
-    auto loader = PanoramaLoader::start(
-        std::vector<uint8_t>(data, data + std::max(size, 0)), file,
-              {.faceSize = kPanoramaFaceSize,
-               .samples = kPanoramaSamples,
-               .sunThreshold = (*v)->settings.sunThreshold,
-               .maxPanoramaPixels = kMaxPanoramaPixels});
+    auto loader = PanoramaLoader::start(std::vector<uint8_t>(data, data + std::max(size, 0)),
+                                        file, panoramaOptions((*v)->settings.sunThreshold));
     if (!loader) return errorJson(loader.message());
     (*v)->pendingPanorama = std::move(*loader);
     (*v)->pendingPanoramaName = file;

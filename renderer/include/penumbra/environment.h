@@ -35,12 +35,6 @@ inline constexpr int kPanoramaWidthPerFace = 16;
 bool isPackedEnvironmentFile(const std::string& path);
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options = {});
-// A panorama already in memory (decoded in steps by the browser viewer), prefiltered as
-// loadEnvironment prefilters a panorama file: radiance checked (errors and warnings name
-// `name`), then faces of options.faceSize.
-Result<PackedEnvironment> environmentFromPanorama(Image& panorama,
-                                                  const EnvironmentLoadOptions& options,
-                                                  const std::string& name);
 // A Radiance (.hdr) panorama loaded in steps, for a caller that must not block (the browser
 // viewer yields to the page between steps): start() reads the file and its header (refusing
 // what loadEnvironment refuses), step() decodes some scanlines (box-filtered as loadEnvironment

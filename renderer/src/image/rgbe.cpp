@@ -97,7 +97,8 @@ bool expectToken(const std::string& s, size_t& pos, const char* token) {
 
 // One scanline of w RGBE pixels into `scan` (new-style RLE, flat, or flat with old-style
 // runs); false on truncated or corrupt data.
-bool decodeScanline(std::span<const uint8_t> bytes, Reader& in, int w, std::vector<uint8_t>& scan) {
+bool decodeScanline(Reader& in, int w, std::vector<uint8_t>& scan) {
+  const std::span<const uint8_t> bytes = in.bytes;
   const bool rle = w >= 8 && w < 32768 && in.left() >= 4 && bytes[in.pos] == 2 &&
                    bytes[in.pos + 1] == 2 && (bytes[in.pos + 2] & 0x80) == 0;
   if (rle) {
@@ -292,7 +293,7 @@ Status Decoder::step(int rows) {
   Image& image = result_.image;
   const int ow = image.width, oh = image.height;
   for (int end = std::min(height_, row_ + std::max(rows, 1)); row_ < end; ++row_) {
-    if (!decodeScanline(bytes_, in, w, scan_)) {
+    if (!decodeScanline(in, w, scan_)) {
       return makeError("cannot read " + where_ + ": truncated or corrupt RGBE data at scanline " +
                        std::to_string(row_));
     }

@@ -52,7 +52,6 @@ class Decoder {
                                int64_t maxPixels = int64_t{1} << 28, int maxWidth = 0);
   int width() const { return width_; }    // the file's
   int height() const { return height_; }
-  int rowsDone() const { return row_; }
   bool done() const { return row_ >= height_; }
   // Decodes up to `rows` more scanlines (at least one); an error names the file and scanline.
   Status step(int rows);

@@ -42,12 +42,6 @@ Result<PackedEnvironment> prefilterPanorama(Image& image, const EnvironmentLoadO
 
 }  // namespace
 
-Result<PackedEnvironment> environmentFromPanorama(Image& panorama,
-                                                  const EnvironmentLoadOptions& options,
-                                                  const std::string& name) {
-  return prefilterPanorama(panorama, options, name);
-}
-
 Result<PackedEnvironment> loadEnvironment(const std::string& path,
                                           const EnvironmentLoadOptions& options) {
   if (isPackedEnvironmentFile(path)) {
