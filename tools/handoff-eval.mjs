@@ -50,9 +50,9 @@ for (const name of REPORT_ONLY ? [] : SCENES) {
     await page.waitForFunction((ms) => window.handoff && (['pathtracer', 'error'].includes(window.handoff.phase) ||
                                                           window.handoff.tracingMs > ms),
                                MAX_TRACING_MS, { timeout: MAX_TRACING_MS + 300_000, polling: 1000 });
-    const s = await page.evaluate(() => {
+    const s = await page.evaluate(async () => {
       const { strip, stripNow, ...rest } = window.handoff;
-      return { ...rest, strip: strip || stripNow() };
+      return { ...rest, strip: strip || (await stripNow()) };
     });
     if (s.phase === 'error') throw new Error(s.error);
     const swap = s.swaps[0];

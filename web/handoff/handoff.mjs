@@ -13,13 +13,12 @@
 // floor=X (default 1/255) and minSamples=N (default 16) (swap.mjs).
 // window.handoff holds the state for tests: {phase, samples, checks, swaps, ...}.
 import Penumbra from '../lib/penumbra.mjs';
-import { PathTracerView } from './pathtracer.mjs';
 import { RULE_DEFAULTS, agreement, differenceImage, evaluateSwap } from './swap.mjs';
 
 const q = new URLSearchParams(location.search);
 const num = (k, d) => (q.has(k) ? Number(q.get(k)) : d);
 const sceneUrl = new URL(q.get('scene') || '../assets/cornell_box/cornell_box.json', location.href).href;
-const budgetMs = num('budget', 12);
+const budgetMs = num('budget', 50);
 const maxSamples = num('maxSamples', 4096);
 const rule = { factor: num('factor', RULE_DEFAULTS.factor), floor: num('floor', RULE_DEFAULTS.floor),
                minSamples: num('minSamples', RULE_DEFAULTS.minSamples) };
@@ -34,13 +33,13 @@ if (q.has('size')) {
 }
 
 const state = window.handoff = {
-  phase: 'loading',  // loading | penumbra | tracing | pathtracer | error
+  phase: 'loading',  // loading | penumbra | compiling | tracing | pathtracer | error
   rule, budgetMs, samples: 0, tracingMs: 0, compileMs: null, penumbraFrames: 0,
   checks: [],        // every comparison of the rule since the last camera change
   swaps: [],         // {samples, tracingMs, noise, bias, why, luminance..., ssim} at each swap
   cameraMoves: 0, error: null,
 };
-let viewer, tracer, penumbraImage = null, previous = null, nextCheck = 1, raf = 0;
+let viewer, tracer, penumbraImage = null, previous = null;
 
 function show(phase) {
   state.phase = phase;
@@ -48,6 +47,8 @@ function show(phase) {
   const s = state.swaps.at(-1);
   status.textContent = {
     loading: 'loading…',
+    compiling: parallelCompile ? 'Penumbra converged; the path tracer is compiling its shader'
+                               : 'Penumbra converged; the path tracer is compiling its shader (no background compile in this browser: drawing waits until it is done)',
     penumbra: `Penumbra: frame ${viewer?.state.frame ?? 0} of ${viewer?.state.total ?? 0}`,
     tracing: `Penumbra converged; path tracer: ${state.samples} samples` +
              (state.checks.length ? `, noise ${state.checks.at(-1).noise.toFixed(4)} vs bias ${state.checks.at(-1).bias.toFixed(4)}` : ''),
@@ -63,60 +64,115 @@ function fail(e) {
   show('error');
 }
 
+// The path tracer in its worker (worker.mjs, bundled as pathtracer-worker.js): it draws into
+// the transferred canvas and answers with samples and snapshots of the displayed image.
+class RemoteTracer {
+  #worker; #reads = new Map(); #nextRead = 0; generation = 0;
+  onCreated = null; onReady = null; onSample = null; onSnapshot = null; onError = null;
+
+  constructor(canvas, init) {
+    this.#worker = new Worker(new URL('./pathtracer-worker.js', import.meta.url), { type: 'module' });
+    this.#worker.onmessage = ({ data: m }) => this.#receive(m);
+    this.#worker.onerror = (e) => this.onError?.(new Error(`path tracer worker: ${e.message || 'failed to load'}`));
+    const offscreen = canvas.transferControlToOffscreen();
+    this.#worker.postMessage({ type: 'init', canvas: offscreen, ...init }, [offscreen]);
+  }
+
+  #receive(m) {
+    if (m.type === 'error') this.onError?.(new Error(m.message));
+    else if (m.type === 'created') this.onCreated?.(m);
+    else if (m.type === 'ready') this.onReady?.(m);
+    else if (m.type === 'image') { this.#reads.get(m.id)?.(m.image); this.#reads.delete(m.id); }
+    else if (m.generation !== this.generation) return;  // of a view since left
+    else if (m.type === 'sample') this.onSample?.(m);
+    else if (m.type === 'snapshot') this.onSnapshot?.(m);
+  }
+
+  compile(view) { this.#worker.postMessage({ type: 'compile', ...view }); }
+  start(view) { this.#worker.postMessage({ type: 'start', generation: ++this.generation, ...view }); }
+  stop() { this.generation++; this.#worker.postMessage({ type: 'stop' }); }
+  read() {
+    const id = this.#nextRead++;
+    return new Promise((resolve) => { this.#reads.set(id, resolve); this.#worker.postMessage({ type: 'read', id }); });
+  }
+}
+
+// The path tracer's shader compiles once per page. With KHR_parallel_shader_compile it compiles
+// in the background from the start. Without it (SwiftShader) the compile holds up every WebGL
+// call of the page until it is done, Penumbra's too: it starts only once Penumbra has converged,
+// and Penumbra is paused meanwhile, so the page's input stays live (a drag moves the camera and
+// Penumbra draws the new view when the compile ends) instead of the page freezing on a call.
+let parallelCompile = false, compileState = 'no';  // no | running | done
+
+function compile() {
+  if (compileState !== 'no') return;
+  compileState = 'running';
+  state.compileStartedAt = performance.now();
+  if (!parallelCompile) viewer.pause();
+  tracer.compile({ camera: viewer.camera, width: pcanvas.width, height: pcanvas.height });
+}
+
+function compiled(m) {
+  compileState = 'done';
+  state.compileMs = m.compileMs;
+  state.compiledAt = performance.now();
+  if (parallelCompile) {
+    if (state.phase === 'compiling') beginTracing();
+    return;
+  }
+  viewer.resume();
+  // A camera moved during the compile reaches the page with the viewer's next frame: start
+  // only if none did.
+  requestAnimationFrame(() => requestAnimationFrame(() => {
+    if (state.phase === 'compiling') beginTracing();
+  }));
+}
+
 // Penumbra converged: compare from here on, with the path tracer at Penumbra's exact view.
 async function startTracing() {
   penumbraImage = await viewer.readPixels({ display: true });
   state.penumbraFrames = penumbraImage.frames;
-  tracer.applySettings(viewer.settings);
-  tracer.setCamera(viewer.camera, pcanvas.width, pcanvas.height);
   if (pcanvas.width !== penumbraImage.width || pcanvas.height !== penumbraImage.height) {
     throw new Error(`Penumbra rendered ${penumbraImage.width}x${penumbraImage.height} into a ${pcanvas.width}x${pcanvas.height} canvas`);
   }
+  if (compileState === 'done') {
+    beginTracing();
+  } else {
+    show('compiling');
+    compile();
+  }
+}
+
+function beginTracing() {
   previous = null;
-  nextCheck = 1;
   state.checks = [];
   state.samples = 0;
+  state.tracingMs = 0;
+  tracer.start({ camera: viewer.camera, settings: viewer.settings, width: pcanvas.width,
+                 height: pcanvas.height, budgetMs, maxSamples });
   show('tracing');
-  if (!raf) raf = requestAnimationFrame(tick);
+}
+
+function onSample(m) {
+  state.samples = m.samples;
+  state.tracingMs = m.tracingMs;
+  show(state.phase);
 }
 
 // At 1, 2, 4, ... samples: keep the snapshot; from minSamples on, apply the rule.
-function onSample(samples) {
-  state.samples = samples;
-  if (samples !== nextCheck) return true;
-  nextCheck *= 2;
-  const current = tracer.readDisplay();
-  if (previous) {
-    const check = { samples, tracingMs: tracer.tracingMs,
+function onSnapshot({ samples, tracingMs, image: current }) {
+  if (previous && state.phase === 'tracing') {
+    const check = { samples, tracingMs,
                     ...evaluateSwap({ previous, current, penumbra: penumbraImage, samples }, rule) };
     state.checks.push(check);
-    if (check.swap && state.phase === 'tracing') {
+    if (check.swap) {
       const swap = { ...check, ...agreement(penumbraImage, current) };
       state.swaps.push(swap);
       state.strip = stripDataUrl(penumbraImage, current);
       show('pathtracer');
-      return false;
     }
   }
   previous = current;
-  return true;
-}
-
-function tick() {
-  raf = 0;
-  if (state.phase !== 'tracing' && state.phase !== 'pathtracer') return;
-  if (state.samples >= maxSamples) return;
-  try {
-    tracer.step(budgetMs, onSample);
-    state.tracingMs = tracer.tracingMs;
-    state.compileMs = tracer.compileMs;
-    if (state.phase === 'tracing') show('tracing');
-    else show('pathtracer');
-  } catch (e) {
-    fail(e);
-    return;
-  }
-  raf = requestAnimationFrame(tick);
 }
 
 // Penumbra converged | path tracer at the swap | 4 x |difference|, side by side.
@@ -155,7 +211,7 @@ async function describe(url) {
 
 // For tests and tools: the strip (data URL) of Penumbra's converged image and the path
 // tracer's image now.
-state.stripNow = () => (penumbraImage && tracer ? stripDataUrl(penumbraImage, tracer.readDisplay()) : null);
+state.stripNow = async () => (penumbraImage && tracer ? stripDataUrl(penumbraImage, await tracer.read()) : null);
 
 async function main() {
   const frames = q.has('frames') ? { frames: num('frames', 0) } : {};
@@ -169,13 +225,25 @@ async function main() {
     if (!info.lights) throw new Error('the hand-off needs a scene file with an environment, or lights of its own (the path tracer has no studio preset)');
     environment = { uniform: [0, 0, 0] };
   }
-  tracer = await PathTracerView.create(tcanvas, { gltfUrl: desc.gltfUrl, environment,
-                                                  settings: viewer.settings,
-                                                  bounces: num('bounces', 8), tiles: num('tiles', 0) });
+  // The path tracer's worker loads the scene now, while Penumbra converges.
+  tracer = new RemoteTracer(tcanvas, {
+    options: { gltfUrl: desc.gltfUrl, environment, settings: viewer.settings,
+               bounces: num('bounces', 8), tiles: num('tiles', 0) },
+  });
+  tracer.onError = fail;
+  tracer.onSample = onSample;
+  tracer.onSnapshot = onSnapshot;
+  tracer.onCreated = (m) => {
+    parallelCompile = state.parallelCompile = m.parallelCompile;
+    state.lampFaces = m.lampFaces;
+    if (parallelCompile) compile();
+  };
+  tracer.onReady = compiled;
   viewer.on('progress', () => { if (state.phase === 'penumbra') show('penumbra'); });
   viewer.on('converged', () => { startTracing().catch(fail); });
   viewer.on('camera', () => {
     state.cameraMoves++;
+    tracer.stop();
     show('penumbra');  // at once, no fade: the path tracer's image is of the old view
   });
   show('penumbra');

@@ -3,9 +3,11 @@
 // - the same glTF (three's GLTFLoader), with EXT_lights_area lights as the path tracer's rect
 //   lights (disks as its circular ones) of the same radiance: emission = color x intensity (nits),
 //   one-sided toward the node's local -Z, sized by the node's largest axis scale;
-// - lamp proxies (extras.area_light_proxy) left out: the path tracer's lights are what rays meet.
-//   Camera rays do not see its lights, so the lamp's face shows black here while Penumbra draws
-//   the proxy (a few pixels; an emissive proxy kept in the scene gave fireflies everywhere);
+// - lamp proxies (extras.area_light_proxy) left out of the path-traced scene: its lights are
+//   what rays meet (an emissive proxy kept in it gave fireflies everywhere: bounces that hit it
+//   count the light twice). Its camera rays do not see lights, so the lamp faces are drawn over
+//   its image as Penumbra shows them (LampLayer): their emission, hidden where the scene's
+//   geometry is in front;
 // - the same environment: a uniform colour, or the same 2:1 panorama (three's equirectangular
 //   mapping is Penumbra's: centre column +X), environmentIntensity, environmentRotation (degrees
 //   about +Y, the same sense), shown as background when Penumbra shows it;
@@ -16,6 +18,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { HDRLoader } from 'three/examples/jsm/loaders/HDRLoader.js';
+import { FullScreenQuad } from 'three/examples/jsm/postprocessing/Pass.js';
 import { ShapedAreaLight, WebGLPathTracer } from 'three-gpu-pathtracer';
 
 export const TONE_MAPPERS = {
@@ -25,8 +28,9 @@ export const TONE_MAPPERS = {
 
 const linear = (rgb) => new THREE.Color().setRGB(rgb[0], rgb[1], rgb[2], THREE.LinearSRGBColorSpace);
 
-// EXT_lights_area lights become ShapedAreaLights under their nodes; proxies move behind them.
-export async function addAreaLights(gltf) {
+// EXT_lights_area lights become ShapedAreaLights under their nodes; their proxies leave the
+// scene (into `proxies`, if given). Returns the number of lights.
+export async function addAreaLights(gltf, proxies = []) {
   const json = gltf.parser.json;
   const defs = json.extensions?.EXT_lights_area?.lights || [];
   const nodes = json.nodes || [];
@@ -54,7 +58,10 @@ export async function addAreaLights(gltf) {
   }
   for (let i = 0; i < nodes.length; i++) {
     if (!lightNodes.has(nodes[i].extras?.area_light_proxy)) continue;
-    (await gltf.parser.getDependency('node', i)).removeFromParent();
+    const proxy = await gltf.parser.getDependency('node', i);
+    proxy.updateMatrixWorld(true);
+    proxy.removeFromParent();
+    proxies.push(proxy);
   }
   gltf.scene.updateMatrixWorld(true);
   return lightNodes.size;
@@ -71,10 +78,75 @@ function uniformTexture(rgb) {
   return t;
 }
 
+// The lamp faces, drawn as Penumbra draws a proxy: its emission (emissive x strength, linear),
+// depth-tested against the scene's opaque geometry. Rendered once per view into a 4x
+// multisampled half-float layer (radiance, alpha = coverage), then laid over every path-traced
+// image through the same exposure, tone mapper and sRGB encoding as the path tracer's own.
+class LampLayer {
+  #scene = new THREE.Scene();
+  #target = new THREE.WebGLRenderTarget(1, 1, { type: THREE.HalfFloatType, samples: 4 });
+  #quad;
+  faces = 0;
+
+  constructor(sceneRoot, proxies) {
+    const depthOnly = new THREE.MeshBasicMaterial({ colorWrite: false });
+    const add = (mesh, material) => {
+      const c = mesh.clone(false);
+      c.material = material;
+      c.matrixAutoUpdate = false;
+      c.matrix.copy(mesh.matrixWorld);
+      this.#scene.add(c);
+    };
+    sceneRoot.updateMatrixWorld(true);
+    sceneRoot.traverse((o) => {
+      if (!o.isMesh) return;
+      const m = Array.isArray(o.material) ? o.material[0] : o.material;
+      if (m && (m.transparent || m.transmission > 0)) return;  // seen through: hides nothing
+      add(o, depthOnly);
+    });
+    for (const proxy of proxies) {
+      proxy.traverse((o) => {
+        if (!o.isMesh) return;
+        const m = Array.isArray(o.material) ? o.material[0] : o.material;
+        const glow = (m?.emissive ?? new THREE.Color(0, 0, 0)).clone().multiplyScalar(m?.emissiveIntensity ?? 1);
+        add(o, new THREE.MeshBasicMaterial({ color: glow, side: m?.side ?? THREE.FrontSide, toneMapped: false }));
+        this.faces++;
+      });
+    }
+    this.#scene.updateMatrixWorld(true);
+    this.#quad = new FullScreenQuad(new THREE.MeshBasicMaterial({
+      // The layer is premultiplied (a resolved edge pixel holds coverage x radiance): 1, 1 - a.
+      map: this.#target.texture, transparent: true, blending: THREE.CustomBlending,
+      blendSrc: THREE.OneFactor, blendDst: THREE.OneMinusSrcAlphaFactor, depthTest: false,
+      depthWrite: false }));
+  }
+
+  // Draws the faces seen by camera into the layer (width x height: the canvas's).
+  render(renderer, camera, width, height) {
+    if (!this.faces) return;
+    this.#target.setSize(width, height);
+    const clear = renderer.getClearColor(new THREE.Color()), alpha = renderer.getClearAlpha();
+    renderer.setRenderTarget(this.#target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear();
+    renderer.render(this.#scene, camera);
+    renderer.setRenderTarget(null);
+    renderer.setClearColor(clear, alpha);
+  }
+
+  composite(renderer) {
+    if (!this.faces) return;
+    const autoClear = renderer.autoClear;
+    renderer.autoClear = false;
+    this.#quad.render(renderer);
+    renderer.autoClear = autoClear;
+  }
+}
+
 export class PathTracerView {
-  renderer; pathTracer; scene; camera; compileMs = null; lights = 0;
+  renderer; pathTracer; scene; camera; compileMs = null; lights = 0; parallelCompile = false;
   autoTiles = true;
-  #gl; #started = false; #sampleMs = 0; #work = 0;
+  #gl; #lamps; #started = false; #sampleMs = 0; #work = 0;
 
   // canvas: the path tracer's own canvas. gltfUrl: the glTF Penumbra renders. environment:
   // {uniform: [r, g, b]} or {file: URL} (a 2:1 panorama). settings: Penumbra's (viewer.settings).
@@ -86,16 +158,24 @@ export class PathTracerView {
     renderer.outputColorSpace = THREE.SRGBColorSpace;
     v.renderer = renderer;
     v.#gl = renderer.getContext();
+    v.parallelCompile = renderer.extensions.has('KHR_parallel_shader_compile');
     const gltf = await new GLTFLoader().loadAsync(gltfUrl);
     v.scene = new THREE.Scene();
     v.scene.add(gltf.scene);
-    v.lights = await addAreaLights(gltf);
+    const proxies = [];
+    v.lights = await addAreaLights(gltf, proxies);
+    v.#lamps = new LampLayer(gltf.scene, proxies);
     await v.#setEnvironment(environment, settings);
     v.camera = new THREE.PerspectiveCamera();
     v.applySettings(settings);
     const pt = new WebGLPathTracer(renderer);
     Object.assign(pt, { renderDelay: 0, minSamples: 0, fadeDuration: 0, rasterizeScene: false,
                         dynamicLowRes: false, renderScale: 1, filterGlossyFactor: 0, bounces });
+    const toCanvas = pt.renderToCanvasCallback;
+    pt.renderToCanvasCallback = (target, r, quad) => {
+      toCanvas(target, r, quad);
+      v.#lamps.composite(r);
+    };
     v.autoTiles = !tiles;  // 0: chosen from the measured sample time (step)
     pt.tiles.set(tiles || 1, tiles || 1);
     v.pathTracer = pt;
@@ -149,6 +229,7 @@ export class PathTracerView {
     c.updateMatrixWorld(true);
     const size = this.renderer.getSize(new THREE.Vector2());
     if (size.x !== width || size.y !== height) this.renderer.setSize(width, height, false);
+    this.#lamps.render(this.renderer, c, width, height);
     if (!this.#started) {
       this.#started = true;
       this.pathTracer.setScene(this.scene, c);  // builds the BVH; the shader compiles on first use
@@ -159,7 +240,20 @@ export class PathTracerView {
     this.#work = 0;
   }
 
+  // Renders the first sample of the view set last, which waits for the shader's compile (and
+  // three's compileAsync, which polls); compileMs is then that wait.
+  async compile() {
+    const start = performance.now();
+    while (this.pathTracer.samples === 0) {
+      this.pathTracer.renderSample();
+      this.#sync();
+      if (this.pathTracer.samples === 0) await new Promise((r) => setTimeout(r, 10));
+    }
+    this.compileMs = performance.now() - start;
+  }
+
   get samples() { return this.pathTracer.samples; }
+  get lampFaces() { return this.#lamps.faces; }  // meshes drawn over the image as lamp faces
   // Milliseconds of path tracing since the last camera change, without the first sample of the
   // page (compileMs: the shader's compilation plus that sample).
   get tracingMs() { return this.#sampleMs; }

@@ -40,7 +40,8 @@ test('EXT_lights_area rect and disk lights become area lights of the same radian
   });
   const proxy = await gltf.parser.getDependency('node', 2);
   const stray = await gltf.parser.getDependency('node', 3);
-  assert.equal(await addAreaLights(gltf), 2);
+  const proxies = [];
+  assert.equal(await addAreaLights(gltf, proxies), 2);
   const lights = [];
   gltf.scene.traverse((o) => { if (o.isRectAreaLight) lights.push(o); });
   assert.equal(lights.length, 2);
@@ -70,8 +71,10 @@ test('EXT_lights_area rect and disk lights become area lights of the same radian
   assert.equal(disk.intensity, 50);
   close(disk.color.r, 1, 'default colour');
 
-  // The lamp proxy of light 0 is left out; a node naming no light stays.
+  // The lamp proxy of light 0 leaves the path-traced scene (for the lamp layer); a node naming
+  // no light stays.
   assert.equal(proxy.parent, null);
+  assert.deepEqual(proxies, [proxy]);
   assert.equal(stray.parent, gltf.scene);
 });
 
