@@ -3,6 +3,7 @@
 Run by tools/reference/render:
   blender -b --factory-startup --python tools/reference/blender_scene.py -- \
       SCENE.json OUT.exr --engine cycles|eevee [--samples N] [--size WxH] [--threads T]
+      [--bounces N]
 
 What it does, so that Blender sees what Penumbra sees:
   * imports the glTF with Blender's importer (numpy.bool workaround first);
@@ -69,6 +70,10 @@ def parse_args():
     ap.add_argument("--size", default=None)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--seed", type=int, default=1)
+    # Cycles only: the path set, for the bias budget (tools/bias-budget): 0 = direct light only
+    # (what the camera's first hit receives from lights and the environment), 1 = plus one
+    # bounce, -1 = Blender's defaults (the full reference).
+    ap.add_argument("--bounces", type=int, default=-1)
     ap.add_argument("--material", choices=["gltf", "principled"], default="gltf",
                     help="gltf: glTF's BRDF as a node tree (default); principled: the importer's")
     return ap.parse_args(argv)
@@ -314,6 +319,13 @@ def main():
         # Light paths: defaults (12 bounces, indirect clamp 10, filter glossy 1) are kept
         # except the glossy filter, which blurs highlights a reference should keep sharp.
         c.blur_glossy = 0.0
+        if a.bounces >= 0:
+            # Every kind of bounce counts toward max_bounces; transparency (alpha) does not.
+            c.max_bounces = a.bounces
+            c.diffuse_bounces = min(c.diffuse_bounces, a.bounces)
+            c.glossy_bounces = min(c.glossy_bounces, a.bounces)
+            c.transmission_bounces = min(c.transmission_bounces, a.bounces)
+            c.volume_bounces = min(c.volume_bounces, a.bounces)
     else:
         scene.render.engine = "BLENDER_EEVEE"
         e = scene.eevee
@@ -338,6 +350,7 @@ def main():
             "render_seconds": round(t1 - t0, 3), "scene": os.path.abspath(a.scene),
             "camera_node": g["nodes"][cam_node].get("name"), "proxies_camera_only": nproxy,
             "lights": made, "blender": bpy.app.version_string, "material": a.material,
+            "bounces": a.bounces,
             "materials_rebuilt": rebuilt}
     with open(os.path.splitext(os.path.abspath(a.out))[0] + ".json", "w") as f:
         json.dump(info, f, indent=1)
