@@ -139,6 +139,16 @@ def write_report(path, results, a, when):
          "Cells: signed mean as a share of Cycles' full mean radiance / RMS of the difference (linear "
          "radiance x 2^exposure). Cycles noise: the RMS of one full reference's own noise (two seeds); "
          "an RMS near it is noise, not bias.", "",
+         "How the terms interact. Penumbra's diffuse occlusion ray (one direction a pixel a frame, on "
+         "screen, up to the occlusion distance) decides per direction: a hit drops the environment's light "
+         "there and, with screen-space indirect light on, brings the radiance found at the hit; a miss keeps "
+         "the environment's irradiance, or with the probe volume on, takes the volume's irradiance instead. "
+         "So where a blocker is off screen or farther than the occlusion distance (an interior's walls, a "
+         "backdrop), the direct term lets sky in that Cycles blocks (positive), the first-bounce term misses "
+         "that blocker's light (negative), and in the full image the probe volume replaces both with its own "
+         "irradiance: it removes the direct term's excess again, which shows as a negative share of the "
+         "third term. Only the total is one image's error; the terms say which part of Penumbra carries it.",
+         "",
          "| scene | direct | first bounce | further bounces | total | Cycles noise | mean: Cycles / Penumbra |",
          "|---|---|---|---|---|---|---|"]
     for name, r in results.items():
@@ -164,6 +174,11 @@ def write_report(path, results, a, when):
         f.write("\n".join(L))
 
 
+def saved_when(out):
+    with open(os.path.join(out, "bias_budget.json")) as f:
+        return json.load(f).get("_when", "?")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", required=True)
@@ -175,12 +190,22 @@ def main():
     ap.add_argument("--cache", default="eval-cache")
     ap.add_argument("--out", default="docs/evaluation")
     ap.add_argument("--force", action="store_true", help="render Cycles again even where cached")
+    ap.add_argument("--report-only", action="store_true",
+                    help="rewrite bias-budget.md from bias_budget.json without rendering")
     a = ap.parse_args()
     root = a.root
+    out = os.path.join(root, a.out)
+    if a.report_only:
+        with open(os.path.join(out, "bias_budget.json")) as f:
+            saved = json.load(f)
+        a.width, a.frames, a.samples = saved.pop("_run", [a.width, a.frames, a.samples])
+        saved.pop("_when", None)
+        write_report(os.path.join(out, "bias-budget.md"), saved, a, saved_when(out))
+        print("wrote %s" % os.path.join(a.out, "bias-budget.md"))
+        return
     binary = os.path.join(root, a.render)
     if not os.path.exists(binary):
         sys.exit("bias-budget: %s is missing: build first (cmake --build build)" % a.render)
-    out = os.path.join(root, a.out)
     os.makedirs(out, exist_ok=True)
     results = {}
     for name in a.scenes.split(","):
@@ -199,9 +224,9 @@ def main():
             row = {"error": str(e).splitlines()[0]}
         results[name] = dict(row, size=size, exposure=exposure)
         print(json.dumps({name: results[name]}), flush=True)
-    with open(os.path.join(out, "bias_budget.json"), "w") as f:
-        json.dump(results, f, indent=1)
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M")
+    with open(os.path.join(out, "bias_budget.json"), "w") as f:
+        json.dump(dict(results, _run=[a.width, a.frames, a.samples], _when=when), f, indent=1)
     write_report(os.path.join(out, "bias-budget.md"), results, a, when)
     print("wrote %s" % os.path.join(a.out, "bias-budget.md"))
 
