@@ -72,7 +72,8 @@ def parse_args():
     ap.add_argument("--seed", type=int, default=1)
     # Cycles only: the path set, for the bias budget (tools/bias-budget): 0 = direct light only
     # (what the camera's first hit receives from lights and the environment), 1 = plus one
-    # bounce, -1 = Blender's defaults (the full reference).
+    # bounce, N = every kind of bounce up to N, -1 = Blender's defaults (12 in all, but diffuse
+    # and glossy paths end after 4).
     ap.add_argument("--bounces", type=int, default=-1)
     ap.add_argument("--material", choices=["gltf", "principled"], default="gltf",
                     help="gltf: glTF's BRDF as a node tree (default); principled: the importer's")
@@ -320,12 +321,13 @@ def main():
         # except the glossy filter, which blurs highlights a reference should keep sharp.
         c.blur_glossy = 0.0
         if a.bounces >= 0:
-            # Every kind of bounce counts toward max_bounces; transparency (alpha) does not.
+            # Every kind of bounce to N (Blender's defaults stop diffuse and glossy paths at 4);
+            # transparency (alpha) is not a bounce.
             c.max_bounces = a.bounces
-            c.diffuse_bounces = min(c.diffuse_bounces, a.bounces)
-            c.glossy_bounces = min(c.glossy_bounces, a.bounces)
-            c.transmission_bounces = min(c.transmission_bounces, a.bounces)
-            c.volume_bounces = min(c.volume_bounces, a.bounces)
+            c.diffuse_bounces = a.bounces
+            c.glossy_bounces = a.bounces
+            c.transmission_bounces = a.bounces
+            c.volume_bounces = a.bounces
     else:
         scene.render.engine = "BLENDER_EEVEE"
         e = scene.eevee
