@@ -1,13 +1,13 @@
 // The path-tracer hand-off page (docs/web.md, "The path-tracer hand-off"): Penumbra renders and
-// converges first; then a path tracer (three-gpu-pathtracer, pathtracer.mjs) refines the same
-// view within a time budget per animation frame, and the page cross-fades to it when the swap
-// rule (swap.mjs) fires; any camera move brings Penumbra back at once. Uses only Penumbra's
-// public API: the 'converged' and 'camera' events, viewer.camera, viewer.settings,
-// viewer.readPixels({display: true}) and viewer.state.
+// converges first; then a path tracer (three-gpu-pathtracer, pathtracer.mjs, in a worker:
+// worker.mjs) refines the same view in tiles of a time budget, and the page cross-fades to it
+// when the swap rule (swap.mjs) fires; any camera move brings Penumbra back at once. Uses only
+// Penumbra's public API: the 'converged' and 'camera' events, viewer.camera, viewer.settings,
+// viewer.pause()/resume(), viewer.readPixels({display: true}) and viewer.state.
 //
 // URL query: scene=URL (a scene .json; default the Cornell box), size=WxH (fixed CSS size of the
-// view, else the window), frames=N (Penumbra's m), budget=MS (path tracer per animation frame,
-// default 12), bounces=N (default 8), tiles=N (N x N tiles per sample; default: chosen from
+// view, else the window), frames=N (Penumbra's m), budget=MS (path tracer per worker animation
+// frame, default 50), bounces=N (default 8), tiles=N (N x N tiles per sample; default: chosen from
 // the measured sample time so a tile fits the budget),
 // maxSamples=N (the path tracer stops there, default 4096), and the rule's factor=F (default 0.5),
 // floor=X (default 1/255) and minSamples=N (default 16) (swap.mjs).
