@@ -181,11 +181,6 @@ def write_report(path, results, a, when):
         f.write("\n".join(L))
 
 
-def saved_when(out):
-    with open(os.path.join(out, "bias_budget.json")) as f:
-        return json.load(f).get("_when", "?")
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", required=True)
@@ -206,8 +201,7 @@ def main():
         with open(os.path.join(out, "bias_budget.json")) as f:
             saved = json.load(f)
         a.width, a.frames, a.samples = saved.pop("_run", [a.width, a.frames, a.samples])
-        saved.pop("_when", None)
-        write_report(os.path.join(out, "bias-budget.md"), saved, a, saved_when(out))
+        write_report(os.path.join(out, "bias-budget.md"), saved, a, saved.pop("_when", "?"))
         print("wrote %s" % os.path.join(a.out, "bias-budget.md"))
         return
     binary = os.path.join(root, a.render)

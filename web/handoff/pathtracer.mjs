@@ -254,14 +254,14 @@ export class PathTracerView {
 
   get samples() { return this.pathTracer.samples; }
   get lampFaces() { return this.#lamps.faces; }  // meshes drawn over the image as lamp faces
-  // Milliseconds of path tracing since the last camera change, without the first sample of the
-  // page (compileMs: the shader's compilation plus that sample).
+  // Milliseconds of path tracing since the last camera change (the compile is compileMs).
   get tracingMs() { return this.#sampleMs; }
 
   // Renders tiles until the budget is spent (at least one); each is timed with a 1-pixel
   // read-back. Calls onSample(samples) after each whole sample. Returns the whole samples done.
   // With autoTiles, a sample is split into k x k tiles, k = ceil(sqrt(sample ms / budget)) (at
   // most 8), so that one tile fits the budget and a camera move is answered within a tile.
+  // compile() comes first: the compile's wait would otherwise count as tracing time.
   step(budgetMs, onSample) {
     const start = performance.now();
     let prev = start, done = 0;
@@ -273,13 +273,11 @@ export class PathTracerView {
       const dt = t - prev;
       prev = t;
       const after = this.pathTracer.samples;
-      // The first sample waits for the shader to compile (no parallel compile in SwiftShader).
-      if (this.compileMs === null && after > 0) this.compileMs = dt;
-      else if (after > before) this.#sampleMs += dt;
+      if (after > before) this.#sampleMs += dt;
       this.#work += dt;
       if (Number.isInteger(after) && after > before) {
         done++;
-        if (this.autoTiles && after > 1) {
+        if (this.autoTiles) {
           const k = Math.min(8, Math.max(1, Math.ceil(Math.sqrt(this.#work / budgetMs))));
           if (k !== this.pathTracer.tiles.x) this.pathTracer.tiles.set(k, k);
         }

@@ -25,9 +25,8 @@ import { PathTracerView } from './pathtracer.mjs';
 let view = null;
 let generation = -1;
 let running = false;
-let budgetMs = 12;
+let budgetMs, maxSamples;  // set by 'start'
 let nextSnapshot = 1;
-let maxSamples = Infinity;
 let pending = 0;
 
 const post = (m, transfer = []) => self.postMessage(m, transfer);
@@ -71,10 +70,9 @@ async function handle(m) {
       post({ type: 'created', parallelCompile: view.parallelCompile, lights: view.lights,
              lampFaces: view.lampFaces });
     } else if (m.type === 'compile') {
-      const start = performance.now();
       view.setCamera(m.camera, m.width, m.height);
       await view.compile();
-      post({ type: 'ready', compileMs: performance.now() - start });
+      post({ type: 'ready', compileMs: view.compileMs });
     } else if (m.type === 'start') {
       view.applySettings(m.settings);
       view.setCamera(m.camera, m.width, m.height);
