@@ -141,10 +141,13 @@ float probeCacheKey() {
 // how far a jittered sample may move it, and the same for the occlusion rays' linear depth.
 float gCacheKey, gCacheTolerance, gViewDepth, gRayTolerance;
 
-// This frame's occlusion samples: where a ray hit, its radiance replaces the unoccluded
-// environment term (diffuse: irradiance; specular: prefiltered).
-void occlusionSamples(Layers L, inout vec3 irradiance, inout vec3 prefiltered,
+// This frame's occlusion samples. Diffuse: where the ray hit, diffuseDelta is what it changes
+// in the unoccluded irradiance (pi times the hit's radiance minus the unoccluded estimate's in
+// that direction: occlusion_trace.frag). Specular: where the ray hit, its radiance replaces
+// prefiltered (a broad lobe: set by environmentTerm from the irradiance).
+void occlusionSamples(Layers L, out vec3 diffuseDelta, inout vec3 prefiltered,
                       out bool diffuseHit, out bool specularHit) {
+  diffuseDelta = vec3(0.0);
   diffuseHit = false;
   specularHit = false;
   vec2 pixel = gl_FragCoord.xy;
@@ -154,9 +157,7 @@ void occlusionSamples(Layers L, inout vec3 irradiance, inout vec3 prefiltered,
   // its own block alone showed the early frames' noise, and a ray's firefly, as 2x2 squares;
   // another one each frame mixed the blocks' sequences, and the image converged like white
   // noise. Where the traced pixel lies on another surface, the own block's ray is taken if its
-  // pixel does not; failing both (a silhouette) the unoccluded estimate stands. E/pi is the
-  // unoccluded estimate of the cosine-weighted radiance; a blocked direction contributes the
-  // hit's radiance instead.
+  // pixel does not; failing both (a silhouette) the unoccluded estimate stands.
   ivec2 own = ivec2(gl_FragCoord.xy) / uOcclusionBlock;
   ivec2 offset = (ivec2(floor(hash2(pixel, 8u) * 3.0)) - 1) * (uOcclusionBlock - 1);
   ivec2 pick = (ivec2(gl_FragCoord.xy) + offset) / uOcclusionBlock;
@@ -164,16 +165,13 @@ void occlusionSamples(Layers L, inout vec3 irradiance, inout vec3 prefiltered,
   vec4 ownRay = texelFetch(uOcclusion, own, 0);
   if (abs(abs(ray.a) - gViewDepth) >= gRayTolerance) ray = ownRay;
   if (ray.a > 0.0 && abs(ray.a - gViewDepth) < gRayTolerance) {
-    irradiance = ray.rgb * PI;
+    diffuseDelta = ray.rgb * PI;
     diffuseHit = true;
   }
 #if PN_BROAD_LOBE
   // A dielectric's broad specular lobe (gpu_scene.h materialFeatures) is occluded like the
   // diffuse one: a second march would cost as much for a few per cent of the light.
-  if (diffuseHit) {
-    prefiltered = irradiance * INV_PI;
-    specularHit = true;
-  }
+  specularHit = diffuseHit;
 #else
   // Specular: one GGX half vector, reflected, marched here.
   vec3 hit;
@@ -214,13 +212,14 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
   vec3 r = specularReflection(L.v, L.n);
   vec3 prefiltered = envRadiance(r, L.perceptualRoughness);
   bool diffuseHit = false, specularHit = false;
+  vec3 diffuseDelta = vec3(0.0);
 #if PN_OCCLUSION
-  occlusionSamples(L, irradiance, prefiltered, diffuseHit, specularHit);
+  occlusionSamples(L, diffuseDelta, prefiltered, diffuseHit, specularHit);
   if (diffuseHit) skyLossWeight = 0.0;
 #endif
   // The probe volume answers what the screen-space rays did not: the environment's light and
   // every bounce, with the visibility the probes saw (which also stands in for the sky-shadow
-  // correction). Looked up only when needed: a pixel whose rays both hit skips it.
+  // correction). A diffuse ray's hit corrects it for its one direction (diffuseDelta).
   // Frame 1 (no occlusion) keeps the sky's reflection: it is the frame shown while the view
   // moves, and one frame of a long mean. Elsewhere only surfaces whose specular layer shows
   // enough of the room (reflectance times smoothness) pay for the radiance lookup.
@@ -236,7 +235,7 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
 #if PN_OCCLUSION && PN_PROBE_CACHE
   probeCacheRead(gCacheKey, gCacheTolerance, pv, room);
 #else
-  if (PN_PROBES != 0 && (!diffuseHit || glossy)) {
+  if (PN_PROBES != 0) {
     pv = probeIrradiance(vWorldPos, L.n, L.v, r, glossy, room);
   }
 #endif
@@ -246,7 +245,7 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
     irradiance = pv.rgb;
 #else
     if (pv.a > 1e-3) {
-      if (!diffuseHit) irradiance = pv.rgb;
+      irradiance = pv.rgb;
       // Glossy reflections of the room: where the probes see geometry toward r, their
       // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
       // surface gets rough (the probes' maps have no mip chain).
@@ -258,6 +257,12 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
     }
 #endif
   }
+  // This frame's diffuse ray: the share of its direction in the estimate, replaced by what the
+  // ray found.
+  irradiance += diffuseDelta;
+#if PN_OCCLUSION && PN_BROAD_LOBE
+  if (diffuseHit) prefiltered = irradiance * INV_PI;
+#endif
   // The broad sheen lobe reflects the cosine-weighted environment (with this frame's
   // occlusion sample), scaled by its albedo: exact in a white furnace.
   vec3 color = occlusion * L.baseScale *

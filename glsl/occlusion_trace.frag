@@ -2,11 +2,24 @@
 // texel (i, j) traces the ray of pixel b (i, j) + uBlockOffset of the full image (block size
 // b = uBlock: 2, or 1 where every pixel traces its own), from the
 // prepass's position and normal, with the cosine-weighted direction and march jitter that
-// pixel's sequence gives. Output: the radiance found (screen-space indirect light), and in
-// alpha the pixel's linear depth, positive where the ray was blocked, negative where it was
-// not (0: background), so the lighting pass can tell whether the ray left its own surface.
+// pixel's sequence gives. Output: where the ray was blocked, the radiance found there
+// (screen-space indirect light) minus the radiance the unoccluded estimate has in that direction,
+// and in alpha the pixel's linear depth, positive where the ray was blocked, negative where it
+// was not (0: background), so the lighting pass can tell whether the ray left its own surface.
+//
+// Why the difference: the lighting pass adds pi times it to the unoccluded irradiance (the probe
+// volume's where it answers, else the environment's). A hit then replaces only its own
+// direction's share, and a miss keeps the estimate of every direction the screen cannot see.
+// Replacing the whole irradiance by pi L(hit) on a hit and crediting a miss with all of it gave
+// misses the light of the (near, lit) directions that hit: the Cornell box gained 2-3 % over the
+// radiosity balance and kept brightening with frames (docs/decisions/
+// 2026-11-28-screen-space-control-variate.md).
 #include "chunks/sampling.glsl"
 #include "chunks/occlusion.glsl"
+#include "chunks/environment.glsl"
+#if PN_PROBES
+#include "chunks/probe_volume.glsl"
+#endif
 uniform mat4 uInvView;
 uniform mat4 uInvProjection;  // unjittered, as the prepass
 uniform int uBlock;           // 2: a ray per 2x2 block, 1: per pixel
@@ -39,5 +52,27 @@ void main() {
   vec3 dir = tangentFrame(n) * sampleCosineHemisphere(pixelSample(block, 0.0));
   vec3 hit;
   bool blocked = traceOcclusion(p, dir, fract(uSequence.x * 7.0 + hash2(block, 5u).x), hit);
-  fragColor = vec4(hit, blocked ? g.w : -g.w);
+  vec3 unoccluded = vec3(0.0);
+  bool probesAnswer = false;
+  if (blocked) {
+    // The environment's radiance toward dir, a little blurred (a few texels of the sky, not the
+    // sun's one), unless the probes answer: the radiance their maps hold toward dir, with the
+    // weights of the irradiance the lighting pass looks up at this point.
+#if PN_PROBES
+    // Toward the viewer (orthographic: along the view axis), as the lighting pass's v.
+    vec3 toEye = uProjection[3][3] > 0.5 ? vec3(0.0, 0.0, 1.0) : -viewPos;
+    vec4 pv = probeRadianceToward(p, n, normalize(mat3(uInvView) * toEye), dir);
+    probesAnswer = pv.a > 1e-3;
+    unoccluded = pv.rgb;
+#endif
+    if (!probesAnswer) unoccluded = envRadiance(dir, 0.5);
+    // Clamped like the hit's radiance: a sun behind a blocker must not bring back a huge
+    // negative sample.
+    float peak = max(unoccluded.r, max(unoccluded.g, unoccluded.b));
+    if (peak > uIndirectClamp) unoccluded *= uIndirectClamp / peak;
+    // Without screen-space indirect light a hit finds nothing to bring back, but the probes
+    // already saw the blocker: their answer stands (no second occlusion of their light).
+    if (probesAnswer && !uIndirectEnabled) hit = unoccluded;
+  }
+  fragColor = vec4(hit - unoccluded, blocked ? g.w : -g.w);
 }

@@ -28,34 +28,30 @@ vec2 probeAtlasUv(int probe, vec2 oct, float interior, vec2 origin, vec2 atlasSi
   return (corner + 1.0 + (oct * 0.5 + 0.5) * interior) / atlasSize;
 }
 
-// Irradiance at p for normal n, seen from direction v (unit, toward the viewer), and the
-// summed weight of the captured probes it comes from (0: none yet, use something else). Outside
-// captures, and with `glossy`, also the probes' radiance toward r (rgb) and the share of it that
-// is geometry (a).
-vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
-  // n and r are the same for every probe: encode them once.
-  vec2 octN = octEncode(n);
-  vec2 octR = octEncode(r);
-  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
-  const float radianceTile = float(PN_PROBE_RADIANCE_TEXELS + 2);
-  vec2 depthOrigin = vec2(float(uProbeColumns) * radianceTile, 0.0);
-  vec2 irrOrigin = depthOrigin + vec2(0.0, float(uProbeRows * (PN_PROBE_DEPTH_TEXELS + 2)));
-  vec4 radSum = vec4(0.0);
+// The atlas origins of the depth and irradiance tiles (radiance tiles start at 0).
+vec2 probeDepthOrigin() {
+  return vec2(float(uProbeColumns * (PN_PROBE_RADIANCE_TEXELS + 2)), 0.0);
+}
+vec2 probeIrradianceOrigin() {
+  return probeDepthOrigin() + vec2(0.0, float(uProbeRows * (PN_PROBE_DEPTH_TEXELS + 2)));
+}
+
+// The point a lookup at p (normal n, v toward the viewer) is made from: off the surface, mostly
+// toward the viewer, so that it does not start inside the wall.
+vec3 probeLookupPoint(vec3 p, vec3 n, vec3 v) {
   float minSpacing = min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
-  // Off the surface, mostly toward the viewer: the lookup must not start inside the wall.
-  vec3 q = p + (0.2 * n + 0.15 * v) * minSpacing;
+  return p + (0.2 * n + 0.15 * v) * minSpacing;
+}
+
+// The four probes around q and their barycentric weights. Four, not eight: the grid cell is
+// split into six tetrahedra along its main diagonal (Kuhn), and the point's barycentric weights
+// in its own tetrahedron interpolate linearly and continuously. Half the texture fetches of
+// trilinear weights, which a software rasterizer pays for at every pixel.
+void probeTetrahedron(vec3 q, out ivec3 cells[4], out float tri[4]) {
   vec3 g = (q - uProbeOrigin) / uProbeSpacing;
-  ivec3 counts = ivec3(uProbeCounts + 0.5);
-  ivec3 last = counts - 1;
+  ivec3 last = ivec3(uProbeCounts + 0.5) - 1;
   ivec3 base = clamp(ivec3(floor(g)), ivec3(0), max(last - 1, ivec3(0)));
   vec3 f = clamp(g - vec3(base), 0.0, 1.0);
-  vec3 sum = vec3(0.0);
-  float weightSum = 0.0;
-  float coverage = 0.0;
-  // Four probes, not eight: the cube is split into six tetrahedra along its main diagonal
-  // (Kuhn), and the point's barycentric weights in its own tetrahedron interpolate linearly
-  // and continuously. Half the texture fetches of trilinear weights, which a software
-  // rasterizer pays for at every pixel.
   ivec3 ea, eb;  // the axes of the largest and second-largest fraction
   if (f.x >= f.y && f.x >= f.z) {
     ea = ivec3(1, 0, 0);
@@ -68,35 +64,73 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     eb = f.x >= f.y ? ivec3(1, 0, 0) : ivec3(0, 1, 0);
   }
   float fa = dot(f, vec3(ea)), fb = dot(f, vec3(eb)), fc = f.x + f.y + f.z - fa - fb;
+  cells[0] = base;
+  cells[1] = min(base + ea, last);
+  cells[2] = min(base + ea + eb, last);
+  cells[3] = min(base + ivec3(1), last);
+  tri[0] = 1.0 - fa;
+  tri[1] = fa - fb;
+  tri[2] = fb - fc;
+  tri[3] = fc;
+}
+
+int probeIndex(ivec3 c) {
+  ivec3 counts = ivec3(uProbeCounts + 0.5);
+  return c.x + counts.x * (c.y + counts.y * c.z);
+}
+
+// How much the probe at grid cell c counts for a surface point p with normal n looked up from
+// q: a soft backface weight (probes behind the surface count less) times Chebyshev's bound on
+// the probability that the probe sees q (no light through walls), small weights crushed (a
+// barely visible probe should not tint the result).
+float probeVisibility(ivec3 c, int index, vec3 p, vec3 q, vec3 n, vec2 atlasSize) {
+  vec3 probePos = uProbeOrigin + vec3(c) * uProbeSpacing;
+  float back = (dot(normalize(probePos - p), n) + 1.0) * 0.5;
+  float w = back * back + 0.05;
+  vec3 fromProbe = q - probePos;
+  float dist = length(fromProbe);
+  vec2 m = texture(uProbeAtlas,
+                   probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
+                                float(PN_PROBE_DEPTH_TEXELS), probeDepthOrigin(), atlasSize))
+               .rg;
+  float d = dist / uProbeDiagonal;
+  if (d > m.x) {
+    float variance = abs(m.y - m.x * m.x);
+    float e = d - m.x;
+    float chebyshev = variance / (variance + e * e);
+    w *= chebyshev * chebyshev * chebyshev;
+  }
+  w = max(w, 1e-5);
+  if (w < 0.2) w *= w * w * 25.0;
+  return w;
+}
+
+// Irradiance at p for normal n, seen from direction v (unit, toward the viewer), and the
+// summed weight of the captured probes it comes from (0: none yet, use something else). Outside
+// captures, and with `glossy`, also the probes' radiance toward r (rgb) and the share of it that
+// is geometry (a).
+vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
+  // n and r are the same for every probe: encode them once.
+  vec2 octN = octEncode(n);
+  vec2 octR = octEncode(r);
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
+  vec2 irrOrigin = probeIrradianceOrigin();
+  vec3 q = probeLookupPoint(p, n, v);
+  ivec3 cells[4];
+  float tri[4];
+  probeTetrahedron(q, cells, tri);
+  vec4 radSum = vec4(0.0);
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  float coverage = 0.0;
   for (int i = 0; i < 4; ++i) {
-    ivec3 o = i == 0 ? ivec3(0) : i == 1 ? ea : i == 2 ? ea + eb : ivec3(1);
-    ivec3 c = min(base + o, last);
-    float tri = i == 0 ? 1.0 - fa : i == 1 ? fa - fb : i == 2 ? fb - fc : fc;
-    int index = c.x + counts.x * (c.y + counts.y * c.z);
-    vec3 probePos = uProbeOrigin + vec3(c) * uProbeSpacing;
-    vec3 toProbe = probePos - p;
-    float back = (dot(normalize(toProbe), n) + 1.0) * 0.5;
-    float w = back * back + 0.05;
-    vec3 fromProbe = q - probePos;
-    float dist = length(fromProbe);
-    vec2 m = texture(uProbeAtlas,
-                     probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
-                                  float(PN_PROBE_DEPTH_TEXELS), depthOrigin, atlasSize)).rg;
-    float d = dist / uProbeDiagonal;
-    if (d > m.x) {
-      float variance = abs(m.y - m.x * m.x);
-      float e = d - m.x;
-      float chebyshev = variance / (variance + e * e);
-      w *= chebyshev * chebyshev * chebyshev;
-    }
-    w = max(w, 1e-5);
-    // Crush small weights: a barely visible probe should not tint the result.
-    if (w < 0.2) w *= w * w * 25.0;
+    int index = probeIndex(cells[i]);
+    float w = probeVisibility(cells[i], index, p, q, n, atlasSize);
     vec4 irr = texture(uProbeAtlas, probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
                                                  irrOrigin, atlasSize));
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
-    w *= tri * valid;
-    coverage += tri * valid;
+    w *= tri[i] * valid;
+    coverage += tri[i] * valid;
     sum += w * irr.rgb;
     weightSum += w;
 #if !PN_CAPTURE
@@ -108,5 +142,36 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
 #endif
   }
   radiance = radSum.a > 0.0 ? vec4(radSum.rgb / radSum.a, radSum.a / weightSum) : vec4(0.0);
+  return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
+}
+
+// The probes' radiance toward d, sky or geometry alike, with the weights probeIrradiance gives
+// p, n and v: its cosine-weighted mean over the hemisphere is their irradiance over pi. Alpha:
+// the captured probes' summed barycentric weight, as probeIrradiance's (0: no answer). A
+// probe's validity is one texel of its irradiance tile (the same in all of them), not a
+// filtered lookup: a software rasterizer pays four texels for one of those.
+vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
+  vec2 octD = octEncode(d);
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
+  vec2 irrOrigin = probeIrradianceOrigin();
+  vec3 q = probeLookupPoint(p, n, v);
+  ivec3 cells[4];
+  float tri[4];
+  probeTetrahedron(q, cells, tri);
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  float coverage = 0.0;
+  const int irrTile = PN_PROBE_IRRADIANCE_TEXELS + 2;
+  for (int i = 0; i < 4; ++i) {
+    int index = probeIndex(cells[i]);
+    ivec2 corner = ivec2(irrOrigin) + ivec2(index % uProbeColumns, index / uProbeColumns) * irrTile;
+    float valid = texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5 ? 1.0 : 0.0;
+    float w = probeVisibility(cells[i], index, p, q, n, atlasSize) * tri[i] * valid;
+    coverage += tri[i] * valid;
+    vec4 rad = texture(uProbeAtlas, probeAtlasUv(index, octD, float(PN_PROBE_RADIANCE_TEXELS),
+                                                 vec2(0.0), atlasSize));
+    sum += w * rad.rgb;
+    weightSum += w;
+  }
   return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
 }

@@ -1,11 +1,16 @@
 // Diffuse occlusion rays at a quarter of the pixels (RendererOptions::quarterOcclusion,
 // passes/occlusion_pass.h): each 2x2 block traces one ray a frame and its pixels share it. The
 // converged image must stay the one a ray per pixel gives, contacts included, and both must
-// differ from an image without occlusion (so the comparison can fail).
+// differ from an image without occlusion (so the comparison can fail). And a floor lit only by
+// a glowing wall beside it against the form factor: screen-space rays and the probe volume
+// together must bring the wall's light once, not once and a half.
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
+#include "passes/camera_math.h"
 #include "penumbra/environment.h"
 #include "render_fixture.h"
 #include "test_support.h"
@@ -72,6 +77,85 @@ TEST_F(OcclusionGLTest, QuarterResolutionRaysKeepTheImage) {
   EXPECT_GT(without->meanAbs, 0.02) << "the scene must show occlusion";
   EXPECT_LT(bias->meanAbs, 0.15 * effect->meanAbs);
   EXPECT_TRUE(matchesImage(quarter, full, {.maxAbs = 0.2, .meanAbs = 0.006}, "occlusion_quarter"));
+}
+
+// A rectangle p0 + s e1 + t e2 (s, t in [0, 1]) facing n (counter-clockwise seen from n).
+Mesh rectangle(glm::vec3 p0, glm::vec3 e1, glm::vec3 e2, glm::vec3 n, int material) {
+  Mesh m;
+  Primitive p;
+  p.positions = {p0, p0 + e1, p0 + e1 + e2, p0 + e2};
+  p.normals.assign(4, n);
+  p.indices = glm::dot(glm::cross(e1, e2), n) > 0.0f ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
+                                                     : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
+  for (const glm::vec3& v : p.positions) p.bounds.extend(v);
+  p.material = material;
+  m.primitives.push_back(std::move(p));
+  return m;
+}
+
+// Form factor from a floor point (x, 0, z), z > 0, normal +y, to the wall x in [-1, 1],
+// y in [0, 1], z = 0, normal +z: the integral of cos cos / (pi r^2) over the wall (midpoint
+// rule, 400 x 200 cells: converged to 1e-4 for the points used).
+double wallFormFactor(double x, double z) {
+  const int nx = 400, ny = 200;
+  const double dx = 2.0 / nx, dy = 1.0 / ny;
+  double f = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    const double wy = (j + 0.5) * dy;
+    for (int i = 0; i < nx; ++i) {
+      const double wx = -1.0 + (i + 0.5) * dx;
+      const double r2 = (x - wx) * (x - wx) + wy * wy + z * z;
+      f += wy * z / (r2 * r2) * dx * dy;
+    }
+  }
+  return f / std::numbers::pi;
+}
+
+// Light that reaches the floor only from the wall's emission (no lights, black environment,
+// a black wall so nothing comes back): where the occlusion rays hit the wall they bring its
+// radiance, where they miss the probe volume answers. A miss used to take the probes' whole
+// irradiance, the wall's share included, so the floor near the wall got the wall's light once
+// and a half (1.33 x the form factor); the rays now correct only their own direction's share
+// (0.96 x).
+TEST_F(OcclusionGLTest, FloorBesideAGlowingWallGetsItsLightOnce) {
+  const float rho = 0.5f;
+  Material floor = lambert(glm::vec3(rho));
+  floor.specularFactor = 0.0f;  // pure Lambert: radiance = albedo x irradiance / pi
+  Material wall = lambert(glm::vec3(0.0f));
+  wall.specularFactor = 0.0f;
+  wall.emissiveFactor = glm::vec3(1.0f);
+  Scene s;
+  s.materials = {floor, wall};
+  s.meshes.push_back(rectangle({-1.5f, 0, 0}, {3, 0, 0}, {0, 0, 2.5f}, {0, 1, 0}, 0));
+  s.meshes.push_back(rectangle({-1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 0, 1}, 1));
+  finishScene(s);
+  const Camera cam = lookAtCamera({0.0f, 1.6f, 2.8f}, {0.0f, 0.3f, 0.3f}, 60.0f);
+  RenderSettings rs;
+  rs.width = rs.height = 96;
+  rs.progressive.frames = 128;
+  rs.showBackground = false;
+  // Probes close enough together to see the floor's gradient (the default grid puts its layers
+  // on the floor and the wall's top, and alone gives half the light here), captured quickly:
+  // what is measured is how the rays and the probes combine, not how coarse the grid is.
+  rs.progressive.probeDensity = 8.0f;
+  rs.progressive.probesPerFrame = 16;
+  auto img = renderRadiance(s, uniformEnvironment(glm::vec3(0.0f)), cam, rs);
+  ASSERT_TRUE(img.ok()) << img.message();
+  const CameraMatrices cm = cameraMatrices(cam, rs.width, rs.height, {0, 0});
+  double measured = 0.0, expected = 0.0;
+  for (float z : {0.15f, 0.3f, 0.5f, 0.8f}) {
+    for (float x : {-0.4f, 0.0f, 0.4f}) {
+      const double e = rho * wallFormFactor(x, z);
+      const double m = radianceAt(*img, cm.projection * cm.view, {x, 0.0f, z}, true);
+      std::printf("# floor at (%.2f, %.2f): %.4f, form factor gives %.4f\n", x, z, m, e);
+      measured += m;
+      expected += e;
+    }
+  }
+  std::printf("floor beside the wall: %.4f of the form factor's light\n", measured / expected);
+  // The rest is the probes' interpolation, which answers for the rays that miss (the march's
+  // four steps overshoot the wall's top edge).
+  EXPECT_NEAR(measured / expected, 1.0, 0.1);
 }
 
 }  // namespace

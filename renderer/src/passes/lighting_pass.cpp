@@ -10,18 +10,19 @@
 #include "passes/scene_draw.h"
 
 namespace penumbra::passes {
+
+// The environment turns by +angle about Y: look up directions turned by -angle.
+glm::mat3 environmentLookup(const RenderSettings& s) {
+  return glm::mat3(
+      glm::rotate(glm::mat4(1.0f), glm::radians(-s.environmentRotation), glm::vec3(0, 1, 0)));
+}
+
 namespace {
 
 // The part of the targets a batch draws (LightingBatch::drawWidth).
 glm::ivec2 drawnSize(const LightingBatch& b) {
   return b.drawWidth > 0 ? glm::ivec2(b.drawWidth, b.drawHeight)
                          : glm::ivec2(b.targets->width, b.targets->height);
-}
-
-// The environment turns by +angle about Y: look up directions turned by -angle.
-glm::mat3 environmentLookup(const RenderSettings& s) {
-  return glm::mat3(
-      glm::rotate(glm::mat4(1.0f), glm::radians(-s.environmentRotation), glm::vec3(0, 1, 0)));
 }
 
 // tan(angular radius) of a directional light's disk (0: a point at infinity, or not

@@ -54,6 +54,9 @@ struct PunctualDraw {
   bool skyLoss = false;
 };
 
+// The rotation that turns a world direction into the environment's (its uEnvRotation).
+glm::mat3 environmentLookup(const RenderSettings& s);
+
 struct LightingBatch {
   RenderTargets* targets = nullptr;
   // The part of the targets drawn, from their bottom-left corner: all of it (0: the targets'

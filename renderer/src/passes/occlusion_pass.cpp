@@ -2,14 +2,23 @@
 
 #include <array>
 
+#include "gpu/gpu_environment.h"
 #include "passes/limits.h"
+#include "passes/probe_volume.h"
 
 namespace penumbra::passes {
 
+namespace {
+Result<FullscreenPass> tracePass(gl::ShaderLibrary& library, bool probes) {
+  return FullscreenPass::create(library, "occlusion_trace.frag", false,
+                                {{"PN_PROBES", probes ? "1" : "0"}, {"PN_CAPTURE", "0"}});
+}
+}  // namespace
+
 Result<OcclusionPass> OcclusionPass::create(gl::ShaderLibrary& library) {
-  auto pass = FullscreenPass::create(library, "occlusion_trace.frag");
+  auto pass = tracePass(library, false);
   if (!pass) return pass.error();
-  return OcclusionPass(std::move(*pass));
+  return OcclusionPass(library, std::move(*pass));
 }
 
 glm::ivec2 OcclusionPass::blockOffset(int frame) {
@@ -19,13 +28,24 @@ glm::ivec2 OcclusionPass::blockOffset(int frame) {
   return kOrder[static_cast<size_t>(((frame % 4) + 4) % 4)];
 }
 
-Status OcclusionPass::trace(const OcclusionInputs& in) const {
+Status OcclusionPass::trace(const OcclusionInputs& in) {
   RenderTargets& t = *in.targets;
   PN_CHECK(in.block == 1 || in.block == 2, "OcclusionPass: blocks of 1 or 2 pixels");
+  PN_CHECK(in.environment != nullptr, "OcclusionPass: the environment is required");
+  const bool probes = in.probes != nullptr && in.probes->active();
+  // The probe variant only once the volume is looked up: frame 1's programs stay few.
+  if (probes && !probesPass_) {
+    auto pass = tracePass(*library_, true);
+    if (!pass) return pass.error();
+    probesPass_.emplace(std::move(*pass));
+  }
   PN_TRY(t.ensureOcclusion(in.block));
   t.occlusion.framebuffer.bind();
   gl::setViewport(0, 0, t.occlusionWidth(in.block), t.occlusionHeight(in.block));
-  const gl::Program& p = pass_.begin();
+  const FullscreenPass& pass = probes ? *probesPass_ : pass_;
+  const gl::Program& p = pass.begin();
+  in.environment->bind(p, kUnitEnvCube, kUnitLut, in.environmentIntensity, in.environmentRotation);
+  if (probes) in.probes->bind(p);
   t.prepass.color.bind(kUnitPrepass);
   t.accumulation[static_cast<size_t>(t.current)].color.bind(kUnitAccumulated);
   p.set("uPrepass", kUnitPrepass);
@@ -41,7 +61,7 @@ Status OcclusionPass::trace(const OcclusionInputs& in) const {
   p.set("uSequence", in.sequence);
   p.set("uBlock", in.block);
   p.set("uBlockOffset", in.block == 2 ? glm::vec2(blockOffset(in.frame)) : glm::vec2(0.0f));
-  pass_.draw();
+  pass.draw();
   return {};
 }
 

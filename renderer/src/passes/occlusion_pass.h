@@ -5,15 +5,25 @@
 // surface. The march was the largest part of a later frame's lighting pass; on a software
 // rasterizer this pass costs about 60 % of it, not a quarter: alone, the march's dependent
 // fetches cannot overlap other work (README, Performance).
+// A blocked ray stores its hit's radiance minus the unoccluded estimate's toward it (the probe
+// volume's radiance maps, else the environment's): the lighting pass adds that, a control
+// variate, to the unoccluded irradiance (occlusion_trace.frag).
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "gl/program.h"
 #include "passes/fullscreen_pass.h"
 #include "passes/targets.h"
 
+namespace penumbra {
+class GpuEnvironment;
+}
+
 namespace penumbra::passes {
+
+class ProbeVolume;
 
 struct OcclusionInputs {
   RenderTargets* targets = nullptr;  // reads the prepass and the mean, writes targets->occlusion
@@ -25,18 +35,27 @@ struct OcclusionInputs {
   float occlusionDistance = 1.0f;
   bool indirect = true;  // screen-space indirect light: the hit's radiance
   float indirectClamp = 0.0f;
+  // The unoccluded estimate a hit corrects: the environment (required), turned and scaled as
+  // the lighting pass's, and the probe volume where the lighting pass looks it up (else null).
+  const GpuEnvironment* environment = nullptr;
+  float environmentIntensity = 1.0f;
+  glm::mat3 environmentRotation{1.0f};
+  const ProbeVolume* probes = nullptr;
 };
 
 class OcclusionPass {
  public:
   static Result<OcclusionPass> create(gl::ShaderLibrary& library);
-  Status trace(const OcclusionInputs& in) const;
+  Status trace(const OcclusionInputs& in);
   // Which pixel of each 2x2 block traces in frame n (cycles through the four).
   static glm::ivec2 blockOffset(int frame);
 
  private:
-  explicit OcclusionPass(FullscreenPass pass) : pass_(std::move(pass)) {}
-  FullscreenPass pass_;
+  OcclusionPass(gl::ShaderLibrary& library, FullscreenPass pass)
+      : library_(&library), pass_(std::move(pass)) {}
+  gl::ShaderLibrary* library_;
+  FullscreenPass pass_;                       // without the probe volume
+  std::optional<FullscreenPass> probesPass_;  // with it: built when first needed
 };
 
 }  // namespace penumbra::passes

@@ -176,7 +176,7 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
     case StepKind::Occlusion:
       // A quarter of the pixels (one unit for the whole image: it is small), once the prepass
       // is complete, before any lighting band.
-      return [this, still, occlusionDistance]() -> Status {
+      return [this, still, occlusionDistance, probeLookups = fs.probeLookups]() -> Status {
         const ProgressiveSettings& ps = settings.progressive;
         PN_TRY(occlusionPass->trace({.targets = &*targets,
                                      .view = still.view,
@@ -186,7 +186,11 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
                                      .block = options.quarterOcclusion ? 2 : 1,
                                      .occlusionDistance = occlusionDistance,
                                      .indirect = ps.screenSpaceIndirect,
-                                     .indirectClamp = ps.indirectClamp}));
+                                     .indirectClamp = ps.indirectClamp,
+                                     .environment = environment.get(),
+                                     .environmentIntensity = settings.environmentIntensity,
+                                     .environmentRotation = passes::environmentLookup(settings),
+                                     .probes = probeLookups ? &*probes : nullptr}));
         endPass(&stats.occlusionMs);
         return {};
       };
