@@ -258,7 +258,9 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
 #endif
   }
   // This frame's diffuse ray: the share of its direction in the estimate, replaced by what the
-  // ray found.
+  // ray found. A sample may go below zero (a dark hit where the estimate is bright) and is kept
+  // so: clamping it here added 1 % to the Cornell box's mean. Only the read-outs clamp the
+  // running mean (Renderer::readRadiance; the tone mapping).
   irradiance += diffuseDelta;
 #if PN_OCCLUSION && PN_BROAD_LOBE
   if (diffuseHit) prefiltered = irradiance * INV_PI;

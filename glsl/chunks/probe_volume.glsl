@@ -89,9 +89,10 @@ float probeVisibility(ivec3 c, int index, vec3 p, vec3 q, vec3 n, vec2 atlasSize
   float w = back * back + 0.05;
   vec3 fromProbe = q - probePos;
   float dist = length(fromProbe);
-  vec2 m = texture(uProbeAtlas,
-                   probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
-                                float(PN_PROBE_DEPTH_TEXELS), probeDepthOrigin(), atlasSize))
+  vec2 m = textureLod(uProbeAtlas,
+                      probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
+                                   float(PN_PROBE_DEPTH_TEXELS), probeDepthOrigin(), atlasSize),
+                      0.0)
                .rg;
   float d = dist / uProbeDiagonal;
   if (d > m.x) {
@@ -126,8 +127,10 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
   for (int i = 0; i < 4; ++i) {
     int index = probeIndex(cells[i]);
     float w = probeVisibility(cells[i], index, p, q, n, atlasSize);
-    vec4 irr = texture(uProbeAtlas, probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
-                                                 irrOrigin, atlasSize));
+    vec4 irr = textureLod(uProbeAtlas,
+                          probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS), irrOrigin,
+                                       atlasSize),
+                          0.0);
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
     w *= tri[i] * valid;
     coverage += tri[i] * valid;
@@ -135,8 +138,10 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     weightSum += w;
 #if !PN_CAPTURE
     if (glossy) {
-      vec4 rad = texture(uProbeAtlas, probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS),
-                                                   vec2(0.0), atlasSize));
+      vec4 rad = textureLod(uProbeAtlas,
+                            probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                                         atlasSize),
+                            0.0);
       radSum += (w * rad.a) * vec4(rad.rgb, 1.0);
     }
 #endif
@@ -168,8 +173,10 @@ vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
     float valid = texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5 ? 1.0 : 0.0;
     float w = probeVisibility(cells[i], index, p, q, n, atlasSize) * tri[i] * valid;
     coverage += tri[i] * valid;
-    vec4 rad = texture(uProbeAtlas, probeAtlasUv(index, octD, float(PN_PROBE_RADIANCE_TEXELS),
-                                                 vec2(0.0), atlasSize));
+    vec4 rad = textureLod(uProbeAtlas,
+                          probeAtlasUv(index, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                                       atlasSize),
+                          0.0);
     sum += w * rad.rgb;
     weightSum += w;
   }

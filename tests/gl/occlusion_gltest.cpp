@@ -134,9 +134,10 @@ TEST_F(OcclusionGLTest, FloorBesideAGlowingWallGetsItsLightOnce) {
   rs.width = rs.height = 96;
   rs.progressive.frames = 128;
   rs.showBackground = false;
-  // Probes close enough together to see the floor's gradient (the default grid puts its layers
-  // on the floor and the wall's top, and alone gives half the light here), captured quickly:
-  // what is measured is how the rays and the probes combine, not how coarse the grid is.
+  // Probes close enough together to see the floor's gradient (the default grid has one layer,
+  // at half the wall's height, whose upward hemisphere sees only the wall's upper half: alone
+  // it gives half the light here), captured quickly: what is measured is how the rays and the
+  // probes combine, not how coarse the grid is.
   rs.progressive.probeDensity = 8.0f;
   rs.progressive.probesPerFrame = 16;
   auto img = renderRadiance(s, uniformEnvironment(glm::vec3(0.0f)), cam, rs);

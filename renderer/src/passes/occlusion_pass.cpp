@@ -37,7 +37,7 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
   if (probes && !probesPass_) {
     auto pass = tracePass(*library_, true);
     if (!pass) return pass.error();
-    probesPass_.emplace(std::move(*pass));
+    probesPass_ = std::make_unique<FullscreenPass>(std::move(*pass));
   }
   PN_TRY(t.ensureOcclusion(in.block));
   t.occlusion.framebuffer.bind();

@@ -11,7 +11,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
-#include <optional>
+#include <memory>
 
 #include "gl/program.h"
 #include "passes/fullscreen_pass.h"
@@ -54,8 +54,8 @@ class OcclusionPass {
   OcclusionPass(gl::ShaderLibrary& library, FullscreenPass pass)
       : library_(&library), pass_(std::move(pass)) {}
   gl::ShaderLibrary* library_;
-  FullscreenPass pass_;                       // without the probe volume
-  std::optional<FullscreenPass> probesPass_;  // with it: built when first needed
+  FullscreenPass pass_;                         // without the probe volume
+  std::unique_ptr<FullscreenPass> probesPass_;  // with it: built when first needed
 };
 
 }  // namespace penumbra::passes

@@ -33,6 +33,11 @@ Result<Image> Renderer::readRadiance() {
   auto data = t.accumulation[static_cast<size_t>(t.current)].framebuffer.readRgbaFloat(
       0, 0, 0, t.width, t.height);
   PN_TRY(gl::checkError("reading the accumulated image"));
+  // The diffuse rays' control variate (glsl/occlusion_trace.frag) makes single samples negative
+  // in dark pixels, so an early mean can be: radiance is not, and the display clamps them too.
+  for (size_t i = 0; i < data.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) data[i + c] = std::max(data[i + c], 0.0f);
+  }
   return flipRows(std::move(data), t.width, t.height, 4);
 }
 
