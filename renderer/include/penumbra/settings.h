@@ -42,7 +42,9 @@ struct ProgressiveSettings {
   float occlusionDistance = 0.0f;
   int lightSamples = 0;  // shadow-map samples per area light; 0 = automatic
   int shadowMapSize = 1024;
-  bool screenSpaceIndirect = true;  // one-bounce screen-space indirect light
+  // One-bounce screen-space indirect light. Off: a blocked diffuse ray keeps the probe volume's
+  // light where the volume answers (it saw the blocker), else removes its direction's sky.
+  bool screenSpaceIndirect = true;
   // Sky shadows: from frame 2, one direction per frame drawn from the environment's (sunless)
   // luminance gets a directional shadow map, and the light its shadow takes is subtracted from
   // the diffuse environment term, so objects shade what is under them at any distance. Off by
