@@ -36,18 +36,15 @@ vec2 probeIrradianceOrigin() {
   return probeDepthOrigin() + vec2(0.0, float(uProbeRows * (PN_PROBE_DEPTH_TEXELS + 2)));
 }
 
-// The point a lookup at p (normal n, v toward the viewer) is made from: off the surface, mostly
-// toward the viewer, so that it does not start inside the wall.
-vec3 probeLookupPoint(vec3 p, vec3 n, vec3 v) {
-  float minSpacing = min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
-  return p + (0.2 * n + 0.15 * v) * minSpacing;
-}
-
-// The four probes around q and their barycentric weights. Four, not eight: the grid cell is
-// split into six tetrahedra along its main diagonal (Kuhn), and the point's barycentric weights
-// in its own tetrahedron interpolate linearly and continuously. Half the texture fetches of
+// A lookup at p (normal n, v toward the viewer): the point q it is made from, off the surface
+// and mostly toward the viewer so that it does not start inside the wall (returned), and the
+// four probes around q with their barycentric weights. Four, not eight: the grid cell is split
+// into six tetrahedra along its main diagonal (Kuhn), and the point's barycentric weights in
+// its own tetrahedron interpolate linearly and continuously. Half the texture fetches of
 // trilinear weights, which a software rasterizer pays for at every pixel.
-void probeTetrahedron(vec3 q, out ivec3 cells[4], out float tri[4]) {
+vec3 probeTetrahedron(vec3 p, vec3 n, vec3 v, out ivec3 cells[4], out float tri[4]) {
+  float minSpacing = min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
+  vec3 q = p + (0.2 * n + 0.15 * v) * minSpacing;
   vec3 g = (q - uProbeOrigin) / uProbeSpacing;
   ivec3 last = ivec3(uProbeCounts + 0.5) - 1;
   ivec3 base = clamp(ivec3(floor(g)), ivec3(0), max(last - 1, ivec3(0)));
@@ -72,6 +69,7 @@ void probeTetrahedron(vec3 q, out ivec3 cells[4], out float tri[4]) {
   tri[1] = fa - fb;
   tri[2] = fb - fc;
   tri[3] = fc;
+  return q;
 }
 
 int probeIndex(ivec3 c) {
@@ -114,12 +112,10 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
   // n and r are the same for every probe: encode them once.
   vec2 octN = octEncode(n);
   vec2 octR = octEncode(r);
-  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
-  vec2 irrOrigin = probeIrradianceOrigin();
-  vec3 q = probeLookupPoint(p, n, v);
   ivec3 cells[4];
   float tri[4];
-  probeTetrahedron(q, cells, tri);
+  vec3 q = probeTetrahedron(p, n, v, cells, tri);
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
   vec4 radSum = vec4(0.0);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
@@ -128,8 +124,8 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     int index = probeIndex(cells[i]);
     float w = probeVisibility(cells[i], index, p, q, n, atlasSize);
     vec4 irr = textureLod(uProbeAtlas,
-                          probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS), irrOrigin,
-                                       atlasSize),
+                          probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
+                                       probeIrradianceOrigin(), atlasSize),
                           0.0);
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
     w *= tri[i] * valid;
@@ -156,20 +152,19 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
 // probe's validity is one texel of its irradiance tile (the same in all of them), not a
 // filtered lookup: a software rasterizer pays four texels for one of those.
 vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
-  vec2 octD = octEncode(d);
-  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
-  vec2 irrOrigin = probeIrradianceOrigin();
-  vec3 q = probeLookupPoint(p, n, v);
   ivec3 cells[4];
   float tri[4];
-  probeTetrahedron(q, cells, tri);
+  vec3 q = probeTetrahedron(p, n, v, cells, tri);
+  vec2 octD = octEncode(d);
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
+  ivec2 irrOrigin = ivec2(probeIrradianceOrigin());
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   float coverage = 0.0;
   const int irrTile = PN_PROBE_IRRADIANCE_TEXELS + 2;
   for (int i = 0; i < 4; ++i) {
     int index = probeIndex(cells[i]);
-    ivec2 corner = ivec2(irrOrigin) + ivec2(index % uProbeColumns, index / uProbeColumns) * irrTile;
+    ivec2 corner = irrOrigin + ivec2(index % uProbeColumns, index / uProbeColumns) * irrTile;
     float valid = texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5 ? 1.0 : 0.0;
     float w = probeVisibility(cells[i], index, p, q, n, atlasSize) * tri[i] * valid;
     coverage += tri[i] * valid;
