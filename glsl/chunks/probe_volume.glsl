@@ -20,11 +20,11 @@ uniform int uProbeRows;
 // origin, depth tiles to their right, irradiance tiles above the depth tiles.
 uniform sampler2D uProbeAtlas;
 
-// The atlas position of direction `oct` (octEncode's) in a probe's tile of the map whose tiles
-// have `interior` texels inside a one-texel border and start at `origin`.
-vec2 probeAtlasUv(int probe, vec2 oct, float interior, vec2 origin, vec2 atlasSize) {
-  float tile = interior + 2.0;
-  vec2 corner = origin + vec2(float(probe % uProbeColumns), float(probe / uProbeColumns)) * tile;
+// The atlas position of direction `oct` (octEncode's) in a probe's tile (its column and row,
+// probeTile) of the map whose tiles have `interior` texels inside a one-texel border and start
+// at `origin`.
+vec2 probeAtlasUv(vec2 tile, vec2 oct, float interior, vec2 origin, vec2 atlasSize) {
+  vec2 corner = origin + tile * (interior + 2.0);
   return (corner + 1.0 + (oct * 0.5 + 0.5) * interior) / atlasSize;
 }
 
@@ -72,23 +72,27 @@ vec3 probeTetrahedron(vec3 p, vec3 n, vec3 v, out ivec3 cells[4], out float tri[
   return q;
 }
 
-int probeIndex(ivec3 c) {
-  ivec3 counts = ivec3(uProbeCounts + 0.5);
-  return c.x + counts.x * (c.y + counts.y * c.z);
+// The column and row of grid cell c's tiles in each map. In floats: a software rasterizer has
+// no vector integer division, and the index's % and / ran lane by lane, several times a probe.
+vec2 probeTile(ivec3 c) {
+  float index = dot(vec3(c), vec3(1.0, uProbeCounts.x, uProbeCounts.x * uProbeCounts.y));
+  float columns = float(uProbeColumns);
+  float row = floor((index + 0.5) / columns);
+  return vec2(index - row * columns, row);
 }
 
 // How much the probe at grid cell c counts for a surface point p with normal n looked up from
 // q: a soft backface weight (probes behind the surface count less) times Chebyshev's bound on
 // the probability that the probe sees q (no light through walls), small weights crushed (a
 // barely visible probe should not tint the result).
-float probeVisibility(ivec3 c, int index, vec3 p, vec3 q, vec3 n, vec2 atlasSize) {
+float probeVisibility(ivec3 c, vec2 tile, vec3 p, vec3 q, vec3 n, vec2 atlasSize) {
   vec3 probePos = uProbeOrigin + vec3(c) * uProbeSpacing;
   float back = (dot(normalize(probePos - p), n) + 1.0) * 0.5;
   float w = back * back + 0.05;
   vec3 fromProbe = q - probePos;
   float dist = length(fromProbe);
   vec2 m = textureLod(uProbeAtlas,
-                      probeAtlasUv(index, octEncode(dist > 0.0 ? fromProbe / dist : n),
+                      probeAtlasUv(tile, octEncode(dist > 0.0 ? fromProbe / dist : n),
                                    float(PN_PROBE_DEPTH_TEXELS), probeDepthOrigin(), atlasSize),
                       0.0)
                .rg;
@@ -121,10 +125,10 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
   float weightSum = 0.0;
   float coverage = 0.0;
   for (int i = 0; i < 4; ++i) {
-    int index = probeIndex(cells[i]);
-    float w = probeVisibility(cells[i], index, p, q, n, atlasSize);
+    vec2 tile = probeTile(cells[i]);
+    float w = probeVisibility(cells[i], tile, p, q, n, atlasSize);
     vec4 irr = textureLod(uProbeAtlas,
-                          probeAtlasUv(index, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
+                          probeAtlasUv(tile, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
                                        probeIrradianceOrigin(), atlasSize),
                           0.0);
     float valid = irr.a > 0.5 ? 1.0 : 0.0;
@@ -135,7 +139,7 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
 #if !PN_CAPTURE
     if (glossy) {
       vec4 rad = textureLod(uProbeAtlas,
-                            probeAtlasUv(index, octR, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                            probeAtlasUv(tile, octR, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
                                          atlasSize),
                             0.0);
       radSum += (w * rad.a) * vec4(rad.rgb, 1.0);
@@ -163,13 +167,13 @@ vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
   float coverage = 0.0;
   const int irrTile = PN_PROBE_IRRADIANCE_TEXELS + 2;
   for (int i = 0; i < 4; ++i) {
-    int index = probeIndex(cells[i]);
-    ivec2 corner = irrOrigin + ivec2(index % uProbeColumns, index / uProbeColumns) * irrTile;
+    vec2 tile = probeTile(cells[i]);
+    ivec2 corner = irrOrigin + ivec2(tile) * irrTile;
     float valid = texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5 ? 1.0 : 0.0;
-    float w = probeVisibility(cells[i], index, p, q, n, atlasSize) * tri[i] * valid;
+    float w = probeVisibility(cells[i], tile, p, q, n, atlasSize) * tri[i] * valid;
     coverage += tri[i] * valid;
     vec4 rad = textureLod(uProbeAtlas,
-                          probeAtlasUv(index, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                          probeAtlasUv(tile, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
                                        atlasSize),
                           0.0);
     sum += w * rad.rgb;
