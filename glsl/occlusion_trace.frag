@@ -22,6 +22,7 @@
 #endif
 uniform mat4 uInvView;
 uniform mat4 uInvProjection;  // unjittered, as the prepass
+uniform vec4 uViewOrigin;     // as the lighting pass's: (camera position, 1), or (to the viewer, 0)
 uniform int uBlock;           // 2: a ray per 2x2 block, 1: per pixel
 uniform vec2 uBlockOffset;    // which pixel of each block traces this frame
 out vec4 fragColor;
@@ -59,9 +60,8 @@ void main() {
     // sun's one), unless the probes answer: the radiance their maps hold toward dir, with the
     // weights of the irradiance the lighting pass looks up at this point.
 #if PN_PROBES
-    // Toward the viewer (orthographic: along the view axis), as the lighting pass's v.
-    vec3 toEye = uProjection[3][3] > 0.5 ? vec3(0.0, 0.0, 1.0) : -viewPos;
-    vec4 pv = probeRadianceToward(p, n, normalize(mat3(uInvView) * toEye), dir);
+    vec3 v = normalize(uViewOrigin.xyz - p * uViewOrigin.w);  // the lighting pass's v
+    vec4 pv = probeRadianceToward(p, n, v, dir);
     probesAnswer = pv.a > 1e-3;
     unoccluded = pv.rgb;
 #endif

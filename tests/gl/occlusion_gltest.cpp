@@ -79,20 +79,6 @@ TEST_F(OcclusionGLTest, QuarterResolutionRaysKeepTheImage) {
   EXPECT_TRUE(matchesImage(quarter, full, {.maxAbs = 0.2, .meanAbs = 0.006}, "occlusion_quarter"));
 }
 
-// A rectangle p0 + s e1 + t e2 (s, t in [0, 1]) facing n (counter-clockwise seen from n).
-Mesh rectangle(glm::vec3 p0, glm::vec3 e1, glm::vec3 e2, glm::vec3 n, int material) {
-  Mesh m;
-  Primitive p;
-  p.positions = {p0, p0 + e1, p0 + e1 + e2, p0 + e2};
-  p.normals.assign(4, n);
-  p.indices = glm::dot(glm::cross(e1, e2), n) > 0.0f ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
-                                                     : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
-  for (const glm::vec3& v : p.positions) p.bounds.extend(v);
-  p.material = material;
-  m.primitives.push_back(std::move(p));
-  return m;
-}
-
 // Form factor from a floor point (x, 0, z), z > 0, normal +y, to the wall x in [-1, 1],
 // y in [0, 1], z = 0, normal +z: the integral of cos cos / (pi r^2) over the wall (midpoint
 // rule, 400 x 200 cells: converged to 1e-4 for the points used).

@@ -127,15 +127,8 @@ TEST_F(ProbeVolumeGLTest, EmissiveSurfacesLightTheRoom) {
   panel.emissiveFactor = glm::vec3(1.0f);
   panel.emissiveStrength = nits;
   // A square facing down, a little below the ceiling.
-  Mesh quad;
-  Primitive p;
   const float h = 0.5f * size, y = 0.95f;
-  p.positions = {{-h, y, -h}, {h, y, -h}, {h, y, h}, {-h, y, h}};
-  p.normals.assign(4, glm::vec3(0.0f, -1.0f, 0.0f));
-  p.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from below
-  for (const glm::vec3& v : p.positions) p.bounds.extend(v);
-  p.material = 1;
-  quad.primitives.push_back(p);
+  const Mesh quad = rectangle({-h, y, -h}, {size, 0, 0}, {0, 0, size}, {0, -1, 0}, 1);
   double mean[2] = {};
   for (int proxy = 0; proxy < 2; ++proxy) {
     Scene s;
@@ -170,15 +163,7 @@ TEST_F(ProbeVolumeGLTest, ThinWallKeepsTheDarkRoomDark) {
   wall.doubleSided = true;
   s.materials = {pureLambert(0.7f), wall};
   s.meshes.push_back(insideBox({-1, -1, -1}, {1, 1, 1}, 0));
-  Mesh divider;
-  Primitive p;
-  p.positions = {{0, -1, -1}, {0, 1, -1}, {0, 1, 1}, {0, -1, 1}};
-  p.normals.assign(4, glm::vec3(-1, 0, 0));
-  p.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from -x, where the normal points
-  p.material = 1;
-  for (auto& v : p.positions) p.bounds.extend(v);
-  divider.primitives.push_back(std::move(p));
-  s.meshes.push_back(std::move(divider));
+  s.meshes.push_back(rectangle({0, -1, -1}, {0, 2, 0}, {0, 0, 2}, {-1, 0, 0}, 1));
   // On the far wall, facing the divider: every point of the right room is well inside its
   // shadow map's frustum.
   Light light = ceilingLight({-0.95f, 0.0f, 0.0f}, 0.4f, 10.0f);

@@ -20,6 +20,19 @@ Mesh quadMesh(float size, float y, int material) {
   return m;
 }
 
+Mesh rectangle(glm::vec3 p0, glm::vec3 e1, glm::vec3 e2, glm::vec3 n, int material) {
+  Mesh m;
+  Primitive p;
+  p.positions = {p0, p0 + e1, p0 + e1 + e2, p0 + e2};
+  p.normals.assign(4, n);
+  p.indices = glm::dot(glm::cross(e1, e2), n) > 0.0f ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
+                                                     : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
+  for (const glm::vec3& v : p.positions) p.bounds.extend(v);
+  p.material = material;
+  m.primitives.push_back(std::move(p));
+  return m;
+}
+
 Mesh boxMesh(glm::vec3 lo, glm::vec3 hi, int material) {
   Mesh m;
   Primitive p;

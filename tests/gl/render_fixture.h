@@ -11,6 +11,8 @@ namespace penumbra::test {
 
 // A square of side `size` in the XZ plane at height y, facing +Y, with one material.
 Mesh quadMesh(float size, float y, int material);
+// A rectangle p0 + s e1 + t e2 (s, t in [0, 1]) facing n (counter-clockwise seen from n).
+Mesh rectangle(glm::vec3 p0, glm::vec3 e1, glm::vec3 e2, glm::vec3 n, int material);
 // A box [min, max] with outward normals (5 faces, no bottom when `open` is set).
 Mesh boxMesh(glm::vec3 min, glm::vec3 max, int material);
 // A box seen from inside: boxMesh with its normals and windings turned inward.

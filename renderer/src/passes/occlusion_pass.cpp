@@ -57,6 +57,7 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
   p.set("uProjection", in.projection);
   p.set("uInvView", glm::inverse(in.view));
   p.set("uInvProjection", glm::inverse(in.projection));
+  p.set("uViewOrigin", in.viewOrigin);
   p.set("uViewportSize", glm::vec2(t.width, t.height));
   p.set("uSequence", in.sequence);
   p.set("uBlock", in.block);

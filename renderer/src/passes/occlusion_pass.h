@@ -29,9 +29,10 @@ struct OcclusionInputs {
   RenderTargets* targets = nullptr;  // reads the prepass and the mean, writes targets->occlusion
   glm::mat4 view{1.0f};              // the prepass's (unjittered) camera
   glm::mat4 projection{1.0f};
-  glm::vec2 sequence{0.0f};  // the frame's low-discrepancy point
-  int frame = 2;             // picks the pixel of each block
-  int block = 2;             // 2: a ray per 2x2 block; 1: per pixel (the A/B reference)
+  glm::vec4 viewOrigin{0.0f, 0.0f, 0.0f, 1.0f};  // CameraMatrices::viewOrigin
+  glm::vec2 sequence{0.0f};                      // the frame's low-discrepancy point
+  int frame = 2;                                 // picks the pixel of each block
+  int block = 2;  // 2: a ray per 2x2 block; 1: per pixel (the A/B reference)
   float occlusionDistance = 1.0f;
   bool indirect = true;  // screen-space indirect light: the hit's radiance
   float indirectClamp = 0.0f;

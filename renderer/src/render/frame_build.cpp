@@ -181,6 +181,7 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
         PN_TRY(occlusionPass->trace({.targets = &*targets,
                                      .view = still.view,
                                      .projection = still.projection,
+                                     .viewOrigin = still.viewOrigin,
                                      .sequence = pending.plan.sequence,
                                      .frame = pending.plan.frame,
                                      .block = options.quarterOcclusion ? 2 : 1,
