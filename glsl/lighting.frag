@@ -66,6 +66,7 @@ flat in int vFace;
 uniform mat4 uView;
 layout(location = 0) out vec4 cacheIrradiance;  // rgb irradiance, a +-depth key (- : no probes)
 layout(location = 1) out vec4 cacheRoom;        // the room's radiance toward r, and its share
+layout(location = 2) out vec4 cacheWeights;     // three probes' weights and the key (occlusion_trace)
 vec4 fragColor;                                 // unused here
 #elif PN_LIGHT_CACHE_WRITE
 uniform float uLightCacheWeight;
@@ -95,7 +96,9 @@ uniform int uOcclusionBlock;  // pixels a side of the blocks that trace one ray:
 // jittered sample lands on another surface than the cached one (silhouettes): of the pixel and
 // its four neighbours, the best match. No lookup falls back to the probes: a software
 // rasterizer runs both sides of a branch, so the fallback would cost every pixel.
-// Layer 0: irradiance and the +-key; layer 1: the room's radiance and its share.
+// Layer 0: irradiance and the +-key; layer 1: the room's radiance and its share; layer 2: the
+// first three probes' weights (the fourth: 1 - their sum) and the key again, for the occlusion
+// rays.
 uniform highp sampler2DArray uProbeCache;
 
 void probeCacheRead(float key, float tolerance, out vec4 pv, out vec4 room) {
@@ -290,12 +293,13 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
 void writeProbeCache(Layers L) {
   float showsRoom = max(L.specularScale.r, max(L.specularScale.g, L.specularScale.b)) *
                     (1.0 - L.perceptualRoughness);
-  vec4 room;
-  vec4 pv =
-      probeIrradiance(vWorldPos, L.n, L.v, specularReflection(L.v, L.n), showsRoom > 0.01, room);
+  vec4 room, weights;
+  vec4 pv = probeIrradianceWeights(vWorldPos, L.n, L.v, specularReflection(L.v, L.n),
+                                   showsRoom > 0.01, room, weights);
   float key = probeCacheKey();
   cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
   cacheRoom = room;
+  cacheWeights = vec4(pv.a > 1e-3 ? weights.xyz : vec3(0.0), cacheIrradiance.a);
 }
 #endif
 
@@ -335,6 +339,7 @@ void shade() {
 #if PN_PROBE_CACHE_WRITE
   cacheIrradiance = vec4(0.0);
   cacheRoom = vec4(0.0);
+  cacheWeights = vec4(0.0);
 #endif
 #if PN_LIGHT_CACHE_WRITE
   lightCache0 = lightCache1 = lightCache2 = lightCache3 = vec4(0.0);  // unlit: no light

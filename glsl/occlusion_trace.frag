@@ -20,6 +20,20 @@
 #if PN_PROBES
 #include "chunks/probe_volume.glsl"
 #endif
+#if PN_PROBE_CACHE
+// The lighting pass's per-view probe cache, made in an earlier frame of this view: layer 2
+// holds the first three of the four probes' weights at that texel's surface and the +-key
+// (linear view depth over the volume's diagonal; - : no probe answered).
+uniform highp sampler2DArray uProbeCache;
+
+// Whether the cache's texel holds the surface the prepass has at its pixel (linear view depth
+// `depth`): the cache was drawn at a jittered sample, so a silhouette's texel may hold the
+// other side. A relative tolerance: a jitter of under a pixel moves the depth of all but the
+// most grazing surfaces by far less, and a contact's two sides have nearly the same weights.
+bool cacheHoldsSurface(float depth, float cachedKey) {
+  return abs(abs(cachedKey) * uProbeDiagonal - depth) <= 0.03 * depth;
+}
+#endif
 uniform mat4 uInvView;
 uniform mat4 uInvProjection;  // unjittered, as the prepass
 uniform vec4 uViewOrigin;     // as the lighting pass's: (camera position, 1), or (to the viewer, 0)
@@ -55,13 +69,24 @@ void main() {
   bool blocked = traceOcclusion(p, dir, fract(uSequence.x * 7.0 + hash2(block, 5u).x), hit);
   vec3 unoccluded = vec3(0.0);
   bool probesAnswer = false;
+  bool sameSurface = true;
   if (blocked) {
     // The environment's radiance toward dir, a little blurred (a few texels of the sky, not the
     // sun's one), unless the probes answer: the radiance their maps hold toward dir, with the
     // weights of the irradiance the lighting pass looks up at this point.
 #if PN_PROBES
     vec3 v = normalize(uViewOrigin.xyz - p * uViewOrigin.w);  // the lighting pass's v
+#if PN_PROBE_CACHE
+    // The weights the cache holds, which its irradiance was made with: the same estimate in
+    // expectation, for one radiance fetch (probeRadianceDrawn). Where the texel holds another
+    // surface, the ray changes nothing: the pixel keeps the probes' estimate.
+    vec4 cached = texelFetch(uProbeCache, ivec3(px, 2), 0);
+    sameSurface = cacheHoldsSurface(g.w, cached.a);
+    vec4 pv = probeRadianceDrawn(p, n, v, dir, cached.xyz, cached.a > 0.0 ? 1.0 : 0.0,
+                                 fract(uSequence.y * 11.0 + hash2(block, 9u).y));
+#else
     vec4 pv = probeRadianceToward(p, n, v, dir);
+#endif
     probesAnswer = pv.a > 1e-3;
     unoccluded = pv.rgb;
 #endif
@@ -73,6 +98,7 @@ void main() {
     // Without screen-space indirect light a hit finds nothing to bring back, but the probes
     // already saw the blocker: their answer stands (no second occlusion of their light).
     if (probesAnswer && !uIndirectEnabled) hit = unoccluded;
+    if (!sameSurface) hit = unoccluded;
   }
   fragColor = vec4(hit - unoccluded, blocked ? g.w : -g.w);
 }

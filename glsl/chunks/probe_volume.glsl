@@ -111,8 +111,10 @@ float probeVisibility(ivec3 c, vec2 tile, vec3 p, vec3 q, vec3 n, vec2 atlasSize
 // Irradiance at p for normal n, seen from direction v (unit, toward the viewer), and the
 // summed weight of the captured probes it comes from (0: none yet, use something else). Outside
 // captures, and with `glossy`, also the probes' radiance toward r (rgb) and the share of it that
-// is geometry (a).
-vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
+// is geometry (a). `weights`: the four probes' normalized weights (probeTetrahedron's order),
+// which the per-view cache keeps for the occlusion rays' control variate.
+vec4 probeIrradianceWeights(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance,
+                            out vec4 weights) {
   // n and r are the same for every probe: encode them once.
   vec2 octN = octEncode(n);
   vec2 octR = octEncode(r);
@@ -121,6 +123,7 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
   vec3 q = probeTetrahedron(p, n, v, cells, tri);
   vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
   vec4 radSum = vec4(0.0);
+  weights = vec4(0.0);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   float coverage = 0.0;
@@ -136,6 +139,7 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
     coverage += tri[i] * valid;
     sum += w * irr.rgb;
     weightSum += w;
+    weights[i] = w;
 #if !PN_CAPTURE
     if (glossy) {
       vec4 rad = textureLod(uProbeAtlas,
@@ -147,7 +151,13 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
 #endif
   }
   radiance = radSum.a > 0.0 ? vec4(radSum.rgb / radSum.a, radSum.a / weightSum) : vec4(0.0);
+  weights = weightSum > 0.0 ? weights / weightSum : vec4(0.0);
   return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
+}
+
+vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
+  vec4 weights;
+  return probeIrradianceWeights(p, n, v, r, glossy, radiance, weights);
 }
 
 // The probes' radiance toward d, sky or geometry alike, with the weights probeIrradiance gives
@@ -180,4 +190,23 @@ vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
     weightSum += w;
   }
   return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
+}
+
+// The same radiance toward d, in expectation, with the weights a probeIrradianceWeights lookup
+// made nearby (the per-view cache's: w0, w1, w2, and w3 = total - the others): one probe drawn
+// with probability its weight (u uniform in [0, 1)), its nearest radiance texel. One texel and
+// no visibility tests instead of four bilinear lookups of each: a software rasterizer loads
+// every texel lane by lane, and those loads were most of the occlusion pass's cost. The mean
+// over frames is the same. Alpha: the total (1, or 0 where no probe answered).
+vec4 probeRadianceDrawn(vec3 p, vec3 n, vec3 v, vec3 d, vec3 w, float total, float u) {
+  ivec3 cells[4];
+  float tri[4];
+  probeTetrahedron(p, n, v, cells, tri);
+  float x = u * total;
+  int pick = x < w.x ? 0 : x < w.x + w.y ? 1 : x < w.x + w.y + w.z ? 2 : 3;
+  const int interior = PN_PROBE_RADIANCE_TEXELS;
+  ivec2 texel = ivec2(probeTile(cells[pick])) * (interior + 2) + 1 +
+                clamp(ivec2((octEncode(d) * 0.5 + 0.5) * float(interior)), ivec2(0),
+                      ivec2(interior - 1));
+  return vec4(texelFetch(uProbeAtlas, texel, 0).rgb, total);
 }

@@ -204,6 +204,35 @@ TEST(FramePlannerTest, TheLightCacheCountsItsFramesAndFrameOneResetsIt) {
   EXPECT_TRUE(planFrame(framePlan(2, {0}), many, {}, caches).cachedLights.empty());
 }
 
+// The probe volume's per-view cache is written by a frame's lighting, after its occlusion rays:
+// those read it only once an earlier frame of the view made it (the frame that first makes it
+// traces with the full lookup), and a new view starts without one.
+TEST(FramePlannerTest, TheOcclusionRaysReadTheProbeCacheOnlyFromAnEarlierFrame) {
+  FrameScene scene = sceneWith({kArea});
+  scene.probes = true;
+  scene.probeCount = 24;
+  scene.probeCaptures = 24;
+  scene.probeMeanCaptures = 1.0;
+  CacheState caches;
+  int madeAt = -1;
+  for (int f = 1; f <= 64; ++f) {
+    const FrameSchedule s = planFrame(framePlan(f, {0}, f > 1), scene, {}, caches);
+    EXPECT_EQ(s.occlusionReadsProbeCache, s.occlusion && madeAt > 0 && madeAt < f) << "frame " << f;
+    if (s.writeProbeCache) madeAt = f;
+    scene.probeMeanCaptures += 0.25;
+  }
+  EXPECT_GT(madeAt, 2) << "the cache is remade as the volume fills";
+  const FrameSchedule first = planFrame(framePlan(1, {0}, false), scene, {}, caches);
+  EXPECT_FALSE(first.occlusionReadsProbeCache);
+  const FrameSchedule second = planFrame(framePlan(2, {0}), scene, {}, caches);
+  EXPECT_TRUE(second.writeProbeCache) << "a new view makes its cache at its first occlusion frame";
+  EXPECT_FALSE(second.occlusionReadsProbeCache);
+  EXPECT_TRUE(planFrame(framePlan(3, {0}), scene, {}, caches).occlusionReadsProbeCache);
+  FrameLimits noCache;
+  noCache.probeCache = false;
+  EXPECT_FALSE(planFrame(framePlan(4, {0}), scene, noCache, caches).occlusionReadsProbeCache);
+}
+
 TEST(FramePlannerTest, FrameOneLeavesOutLightsThatCanOnlyGiveNaN) {
   PlannerLight broken = kArea;
   broken.finite = false;

@@ -388,6 +388,7 @@ Status LightingPass::writeProbeCache(const LightingBatch& b, const glm::mat3& en
   gl::apply({.depthWrite = false});  // the depth pass left colour writes off
   gl::clearBufferFloat(0, 0, 0, 0, 0);
   gl::clearBufferFloat(1, 0, 0, 0, 0);
+  gl::clearBufferFloat(2, 0, 0, 0, 0);
   LightingBatch writing = b;
   writing.readProbeCache = false;  // the targets being written are not sampled
   writing.accumulateFrame = 0;

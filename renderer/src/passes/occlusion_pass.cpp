@@ -9,14 +9,16 @@
 namespace penumbra::passes {
 
 namespace {
-Result<FullscreenPass> tracePass(gl::ShaderLibrary& library, bool probes) {
+Result<FullscreenPass> tracePass(gl::ShaderLibrary& library, bool probes, bool probeCache) {
   return FullscreenPass::create(library, "occlusion_trace.frag", false,
-                                {{"PN_PROBES", probes ? "1" : "0"}, {"PN_CAPTURE", "0"}});
+                                {{"PN_PROBES", probes ? "1" : "0"},
+                                 {"PN_PROBE_CACHE", probeCache ? "1" : "0"},
+                                 {"PN_CAPTURE", "0"}});
 }
 }  // namespace
 
 Result<OcclusionPass> OcclusionPass::create(gl::ShaderLibrary& library) {
-  auto pass = tracePass(library, false);
+  auto pass = tracePass(library, false, false);
   if (!pass) return pass.error();
   return OcclusionPass(library, std::move(*pass));
 }
@@ -33,19 +35,25 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
   PN_CHECK(in.block == 1 || in.block == 2, "OcclusionPass: blocks of 1 or 2 pixels");
   PN_CHECK(in.environment != nullptr, "OcclusionPass: the environment is required");
   const bool probes = in.probes != nullptr && in.probes->active();
-  // The probe variant only once the volume is looked up: frame 1's programs stay few.
-  if (probes && !probesPass_) {
-    auto pass = tracePass(*library_, true);
+  const bool cached = probes && in.probeCache && static_cast<bool>(t.probeCache);
+  std::unique_ptr<FullscreenPass>& probesPass = probesPass_[cached ? 1 : 0];
+  // The probe variants only once the volume is looked up: frame 1's programs stay few.
+  if (probes && !probesPass) {
+    auto pass = tracePass(*library_, true, cached);
     if (!pass) return pass.error();
-    probesPass_ = std::make_unique<FullscreenPass>(std::move(*pass));
+    probesPass = std::make_unique<FullscreenPass>(std::move(*pass));
   }
   PN_TRY(t.ensureOcclusion(in.block));
   t.occlusion.framebuffer.bind();
   gl::setViewport(0, 0, t.occlusionWidth(in.block), t.occlusionHeight(in.block));
-  const FullscreenPass& pass = probes ? *probesPass_ : pass_;
+  const FullscreenPass& pass = probes ? *probesPass : pass_;
   const gl::Program& p = pass.begin();
   in.environment->bind(p, kUnitEnvCube, kUnitLut, in.environmentIntensity, in.environmentRotation);
   if (probes) in.probes->bind(p);
+  if (cached) {
+    t.probeCache.bind(kUnitProbeCache);
+    p.set("uProbeCache", kUnitProbeCache);
+  }
   t.prepass.color.bind(kUnitPrepass);
   t.accumulation[static_cast<size_t>(t.current)].color.bind(kUnitAccumulated);
   p.set("uPrepass", kUnitPrepass);

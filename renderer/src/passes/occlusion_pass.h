@@ -7,9 +7,12 @@
 // fetches cannot overlap other work (README, Performance).
 // A blocked ray stores its hit's radiance minus the unoccluded estimate's toward it (the probe
 // volume's radiance maps, else the environment's): the lighting pass adds that, a control
-// variate, to the unoccluded irradiance (occlusion_trace.frag).
+// variate, to the unoccluded irradiance (occlusion_trace.frag). Once the volume's per-view
+// cache exists, the probes' radiance comes from one probe drawn by the cache's weights: the
+// same mean, at about half the lookup's cost on a software rasterizer.
 #pragma once
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 
@@ -42,6 +45,9 @@ struct OcclusionInputs {
   float environmentIntensity = 1.0f;
   glm::mat3 environmentRotation{1.0f};
   const ProbeVolume* probes = nullptr;
+  // targets->probeCache holds this view's probe lookups from an earlier frame: the control
+  // variate takes the probes' weights from it instead of testing their visibility again.
+  bool probeCache = false;
 };
 
 class OcclusionPass {
@@ -55,8 +61,9 @@ class OcclusionPass {
   OcclusionPass(gl::ShaderLibrary& library, FullscreenPass pass)
       : library_(&library), pass_(std::move(pass)) {}
   gl::ShaderLibrary* library_;
-  FullscreenPass pass_;                         // without the probe volume
-  std::unique_ptr<FullscreenPass> probesPass_;  // with it: built when first needed
+  FullscreenPass pass_;  // without the probe volume
+  // With it, without and with the per-view cache's weights: built when first needed.
+  std::array<std::unique_ptr<FullscreenPass>, 2> probesPass_;
 };
 
 }  // namespace penumbra::passes

@@ -79,7 +79,7 @@ Result<RenderTargets> RenderTargets::create(int w, int h, gl::PixelFormat format
 
 Status RenderTargets::ensureProbeCache() {
   if (probeCache) return {};
-  return makeLayers(width, height, prepassFormat, 2, frameDepth, "probe cache", probeCache,
+  return makeLayers(width, height, prepassFormat, 3, frameDepth, "probe cache", probeCache,
                     probeCacheFramebuffer);
 }
 

@@ -29,10 +29,11 @@ struct RenderTargets {
   ColorTarget prepass;  // view normal + linear depth
   gl::Renderbuffer prepassDepth;
   ColorTarget display;  // RGBA8, display-encoded
-  // The probe volume's per-view cache of its lookups (LightingPass), two layers of one array
-  // (prepassFormat: RGBA16F where renderable), drawn at once: irradiance with a depth key, and
-  // the room's radiance. One texture unit for both. With the frame's depth, so only the pixels
-  // the frame shades are written. Made on first use.
+  // The probe volume's per-view cache of its lookups (LightingPass), three layers of one array
+  // (prepassFormat: RGBA16F where renderable), drawn at once: irradiance with a depth key, the
+  // room's radiance, and the four probes' weights (which the occlusion rays' control variate
+  // reuses). One texture unit for all. With the frame's depth, so only the pixels the frame
+  // shades are written. Made on first use.
   gl::Texture2DArray probeCache;
   gl::Framebuffer probeCacheFramebuffer;
   gl::Texture2DArray lightCache;

@@ -23,6 +23,7 @@ void planCaches(const FramePlan& plan, const FrameScene& scene, const FrameLimit
   const int since = caches.probeCacheFrame < 0 ? -1 : plan.frame - caches.probeCacheFrame;
   s.writeProbeCache =
       s.readProbeCache && remakeProbeCache(since, captured, caches.probeCacheCaptures);
+  s.occlusionReadsProbeCache = s.readProbeCache && since > 0;
   if (s.writeProbeCache) {
     caches.probeCacheFrame = plan.frame;
     caches.probeCacheCaptures = captured;

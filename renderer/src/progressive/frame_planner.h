@@ -91,6 +91,9 @@ struct FrameSchedule {
   bool occlusion = false;
   bool readProbeCache = false;
   bool writeProbeCache = false;
+  // The cache was made in an earlier frame of this view, so the occlusion rays, traced before
+  // this frame's lighting, may read it too.
+  bool occlusionReadsProbeCache = false;
   bool probeLookups = false;
   std::vector<int> cachedLights;  // scene light indices in the per-view cache (all area lights)
   bool writeLightCache = false;

@@ -176,7 +176,8 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
     case StepKind::Occlusion:
       // A quarter of the pixels (one unit for the whole image: it is small), once the prepass
       // is complete, before any lighting band.
-      return [this, still, occlusionDistance, probeLookups = fs.probeLookups]() -> Status {
+      return [this, still, occlusionDistance, probeLookups = fs.probeLookups,
+              probeCache = fs.occlusionReadsProbeCache]() -> Status {
         const ProgressiveSettings& ps = settings.progressive;
         PN_TRY(occlusionPass->trace({.targets = &*targets,
                                      .view = still.view,
@@ -191,7 +192,8 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
                                      .environment = environment.get(),
                                      .environmentIntensity = settings.environmentIntensity,
                                      .environmentRotation = passes::environmentLookup(settings),
-                                     .probes = probeLookups ? &*probes : nullptr}));
+                                     .probes = probeLookups ? &*probes : nullptr,
+                                     .probeCache = probeCache}));
         endPass(&stats.occlusionMs);
         return {};
       };
