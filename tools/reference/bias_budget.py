@@ -164,6 +164,10 @@ def write_report(path, results, a, when):
          "irradiance: it removes the direct term's excess again, which shows as a negative share of the "
          "third term. Only the total is one image's error; the terms say which part of Penumbra carries it.",
          "",
+         "Why each scene's remaining error is where it is, term by term, and what would halve it: "
+         "[bias-budget-reading.md](bias-budget-reading.md) (written by hand from these pictures and the "
+         "A/B runs in docs/decisions; reread it when this table moves).",
+         "",
          "| scene | direct | first bounce | further bounces | total | Cycles noise | mean: Cycles / Penumbra |",
          "|---|---|---|---|---|---|---|"]
     for name, r in results.items():
