@@ -1,16 +1,18 @@
 """The bias budget (issue #41): where Penumbra's converged error against Cycles sits, term by
 term. Run through tools/bias-budget.
 
-Cycles renders three path sets of each scene (tools/reference/render --bounces): direct light
+Cycles renders four path sets of each scene (tools/reference/render --bounces): direct light
 only (C0: what the camera's first hit receives from the lights and the environment, lamp faces
-and the environment seen directly included), plus one bounce (C1), and the full solution (Cf,
-every kind of bounce up to 64), and the full one a second time with another seed (its noise).
-Penumbra renders the matching terms: direct (P0: --no-gi --no-ssgi: analytic lights with their
-shadow maps, the split-sum environment with its occlusion), plus its screen-space one-bounce
-indirect light (P1: --no-gi), and everything (Pf: with the probe volume). The total error
-Pf - Cf is then the sum of three signed terms:
+and the environment seen directly included), the same from the scene's lights alone (C0L: the
+world black, --no-world), plus one bounce (C1), and the full solution (Cf, every kind of bounce
+up to 64), and the full one a second time with another seed (its noise). Penumbra renders the
+matching terms: direct (P0: --no-gi --no-ssgi: analytic lights with their shadow maps, the
+split-sum environment with its occlusion), the lights alone (P0L: --env-intensity 0), plus its
+screen-space one-bounce indirect light (P1: --no-gi), and everything (Pf: with the probe volume).
+The total error Pf - Cf is then the sum of four signed terms:
 
-  direct            P0 - C0
+  lights            P0L - C0L                area and punctual lights with their shadows
+  environment       (P0 - P0L) - (C0 - C0L)  the environment (and its sun) with its occlusion
   first bounce      (P1 - P0) - (C1 - C0)    screen-space indirect light against Cycles' 1st bounce
   further bounces   (Pf - P1) - (Cf - C1)    the probe volume against Cycles' 2nd and later
 
@@ -39,10 +41,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 # paths after 4, which left the Cornell box 2.0 % darker than the 64-bounce render (its walls
 # reflect about half the light they get, so the 5th and later bounces still count).
 FULL_BOUNCES = 64
-PATH_SETS = [("cycles_b0", 0, 1), ("cycles_b1", 1, 1), ("cycles_full", FULL_BOUNCES, 1),
-             ("cycles_full_seed2", FULL_BOUNCES, 2)]
-PENUMBRA_TERMS = [("penumbra_direct", ["--no-gi", "--no-ssgi"]), ("penumbra_ssgi", ["--no-gi"]),
-                  ("penumbra_full", [])]
+# (name, bounces, seed, extra flags). The lights-only direct render splits the direct term into
+# the lights' and the environment's (with its sun and its occlusion): direct light is linear in
+# its sources, so the environment's share is the direct render minus the lights-only one.
+PATH_SETS = [("cycles_b0", 0, 1, []), ("cycles_b0_lights", 0, 1, ["--no-world"]),
+             ("cycles_b1", 1, 1, []), ("cycles_full", FULL_BOUNCES, 1, []),
+             ("cycles_full_seed2", FULL_BOUNCES, 2, [])]
+PENUMBRA_TERMS = [("penumbra_direct", ["--no-gi", "--no-ssgi"]),
+                  ("penumbra_direct_lights", ["--no-gi", "--no-ssgi", "--env-intensity", "0"]),
+                  ("penumbra_ssgi", ["--no-gi"]), ("penumbra_full", [])]
 
 
 def scene_size(scene_file, width):
@@ -53,13 +60,13 @@ def scene_size(scene_file, width):
 
 
 def render_cycles(root, scene, cache, size, samples, force):
-    for name, bounces, seed in PATH_SETS:
+    for name, bounces, seed, extra in PATH_SETS:
         out = os.path.join(cache, name + ".exr")
         if os.path.exists(out) and not force:
             continue
         cmd = [os.path.join(root, "tools/reference/render"), scene, cache, "--only", "cycles",
                "--samples", str(samples), "--size", size, "--seed", str(seed), "--name", name,
-               "--bounces", str(bounces)]
+               "--bounces", str(bounces)] + extra
         r = subprocess.run(cmd, cwd=root, capture_output=True, text=True)
         if r.returncode != 0:
             raise RuntimeError("%s failed:\n%s" % (" ".join(cmd), r.stderr[-2000:]))
@@ -76,11 +83,13 @@ def render_penumbra(binary, scene, cache, size, frames):
 
 
 def budget(cache, exposure):
-    C = {n: ev.read_rgb(os.path.join(cache, n + ".exr")) for n, _, _ in PATH_SETS}
+    C = {n: ev.read_rgb(os.path.join(cache, n + ".exr")) for n, _, _, _ in PATH_SETS}
     P = {n: ev.read_rgb(os.path.join(cache, n + ".exr")) for n, _ in PENUMBRA_TERMS}
     k = 2.0 ** exposure
     terms = {
-        "direct": P["penumbra_direct"] - C["cycles_b0"],
+        "lights": P["penumbra_direct_lights"] - C["cycles_b0_lights"],
+        "environment": (P["penumbra_direct"] - P["penumbra_direct_lights"])
+        - (C["cycles_b0"] - C["cycles_b0_lights"]),
         "first bounce": (P["penumbra_ssgi"] - P["penumbra_direct"]) - (C["cycles_b1"] - C["cycles_b0"]),
         "further bounces": (P["penumbra_full"] - P["penumbra_ssgi"]) - (C["cycles_full"] - C["cycles_b1"]),
     }
@@ -95,6 +104,8 @@ def budget(cache, exposure):
         "cycles_noise_rms": float(noise),
         "mean": {"cycles": ref_mean, "penumbra": float(P["penumbra_full"].mean()),
                  "cycles_direct": float(C["cycles_b0"].mean()), "penumbra_direct": float(P["penumbra_direct"].mean()),
+                 "cycles_lights": float(C["cycles_b0_lights"].mean()),
+                 "penumbra_lights": float(P["penumbra_direct_lights"].mean()),
                  "cycles_b1": float(C["cycles_b1"].mean()), "penumbra_ssgi": float(P["penumbra_ssgi"].mean())},
     }
     return row, terms, total, C, P
@@ -139,15 +150,18 @@ def frames_arg(text):
 def write_report(path, results, a, when):
     L = ["# The bias budget: Penumbra's converged error against Cycles, term by term", "",
          "Generated by `tools/bias-budget --width %d --frames %s --samples %d` on %s UTC (issue #41). "
-         "Each scene at %d pixels wide (its file's aspect): Cycles renders direct light only (C0), plus "
-         "one bounce (C1) and the full solution (Cf: every kind of bounce up to 64; Blender's defaults, "
+         "Each scene at %d pixels wide (its file's aspect): Cycles renders direct light only (C0), the "
+         "same from the scene's lights alone (C0L), plus one bounce (C1) and the full solution (Cf: every kind of bounce up to 64; Blender's defaults, "
          "which the 1280x720 evaluation uses, end diffuse and glossy paths after 4 and leave the Cornell "
          "box 2.0 %% darker), %d samples each, with "
          "glTF's BRDF (`tools/reference/render --bounces`); Penumbra, %s frames, renders its matching "
-         "terms: direct (P0: `--no-gi --no-ssgi`), plus screen-space indirect light (P1: `--no-gi`), "
-         "everything (Pf). The total error Pf - Cf is the sum of the three signed terms:" % (
+         "terms: direct (P0: `--no-gi --no-ssgi`), the lights alone (P0L: also `--env-intensity 0`; "
+         "Cycles' C0L: `--no-world`), plus screen-space indirect light (P1: `--no-gi`), "
+         "everything (Pf). The total error Pf - Cf is the sum of the four signed terms:" % (
              a.width, a.frames, a.samples, when, a.width, a.samples, a.frames), "",
-         "- **direct** = P0 - C0 (lights, shadows, the environment and its occlusion);",
+         "- **lights** = P0L - C0L (area and punctual lights with their shadows, lamp faces);",
+         "- **environment** = (P0 - P0L) - (C0 - C0L) (the environment and its sun, with their "
+         "occlusion and shadows; direct light is linear in its sources);",
          "- **first bounce** = (P1 - P0) - (C1 - C0) (screen-space indirect light against Cycles' first bounce);",
          "- **further bounces** = (Pf - P1) - (Cf - C1) (the probe volume against Cycles' second and later "
          "bounces; it also brings the first bounce from off screen, which shows here).", "",
@@ -159,25 +173,25 @@ def write_report(path, results, a, when):
          "there and, with screen-space indirect light on, brings the radiance found at the hit; a miss keeps "
          "the environment's irradiance, or with the probe volume on, takes the volume's irradiance instead. "
          "So where a blocker is off screen or farther than the occlusion distance (an interior's walls, a "
-         "backdrop), the direct term lets sky in that Cycles blocks (positive), the first-bounce term misses "
+         "backdrop), the environment term lets sky in that Cycles blocks (positive), the first-bounce term misses "
          "that blocker's light (negative), and in the full image the probe volume replaces both with its own "
-         "irradiance: it removes the direct term's excess again, which shows as a negative share of the "
-         "third term. Only the total is one image's error; the terms say which part of Penumbra carries it.",
+         "irradiance: it removes the environment term's excess again, which shows as a negative share of the "
+         "further-bounces term. Only the total is one image's error; the terms say which part of Penumbra carries it.",
          "",
          "Why each scene's remaining error is where it is, term by term, and what would halve it: "
          "[bias-budget-reading.md](bias-budget-reading.md) (written by hand from these pictures and the "
          "A/B runs in docs/decisions; reread it when this table moves).",
          "",
-         "| scene | direct | first bounce | further bounces | total | Cycles noise | mean: Cycles / Penumbra |",
-         "|---|---|---|---|---|---|---|"]
+         "| scene | lights | environment | first bounce | further bounces | total | Cycles noise | mean: Cycles / Penumbra |",
+         "|---|---|---|---|---|---|---|---|"]
     for name, r in results.items():
         if "error" in r:
-            L.append("| %s | %s | | | | | |" % (name, r["error"]))
+            L.append("| %s | %s | | | | | | |" % (name, r["error"]))
             continue
         t = r["terms"]
         cell = lambda x: "%s / %.4f" % (pct(x["mean"]), x["rms"])  # noqa: E731
-        L.append("| %s | %s | %s | %s | %s | %.4f | %.4f / %.4f |" % (
-            name, cell(t["direct"]), cell(t["first bounce"]), cell(t["further bounces"]),
+        L.append("| %s | %s | %s | %s | %s | %s | %.4f | %.4f / %.4f |" % (
+            name, cell(t["lights"]), cell(t["environment"]), cell(t["first bounce"]), cell(t["further bounces"]),
             cell(r["total"]), r["cycles_noise_rms"], r["mean"]["cycles"], r["mean"]["penumbra"]))
     L += ["", "Largest term per scene (by RMS):", ""]
     for name, r in results.items():

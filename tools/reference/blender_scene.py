@@ -75,6 +75,9 @@ def parse_args():
     # bounce, N = every kind of bounce up to N, -1 = Blender's defaults (12 in all, but diffuse
     # and glossy paths end after 4).
     ap.add_argument("--bounces", type=int, default=-1)
+    # The bias budget's split of the direct term: the scene's lights alone (the world, and with
+    # it the environment's sun, black).
+    ap.add_argument("--no-world", action="store_true")
     ap.add_argument("--material", choices=["gltf", "principled"], default="gltf",
                     help="gltf: glTF's BRDF as a node tree (default); principled: the importer's")
     return ap.parse_args(argv)
@@ -289,6 +292,8 @@ def main():
         u = env.get("uniform", [1.0, 1.0, 1.0])
         bg.inputs["Color"].default_value = (u[0], u[1], u[2], 1.0)
         bg.inputs["Strength"].default_value = intensity
+    if a.no_world:
+        bg.inputs["Strength"].default_value = 0.0
     if sf.get("background", {}).get("show", True) is False:
         print("warning: background.show = false is not reproduced (the world stays visible)")
 
