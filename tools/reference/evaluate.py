@@ -310,6 +310,12 @@ def write_report(a, results, skipped, frames, when):
              "renders: [probe-volume.md](probe-volume.md) (`tools/gi-eval --size WxH`, from the "
              "references cached here).")
     L.append("")
+    L.append("**The bias budget.** Where the converged error against Cycles sits, term by term (the "
+             "lights, the environment, the first bounce, further bounces), with Cycles rendering the "
+             "matching path sets: [bias-budget.md](bias-budget.md) (`tools/bias-budget`, issue #41), and "
+             "why each scene's remaining error is there and what would halve it: "
+             "[bias-budget-reading.md](bias-budget-reading.md).")
+    L.append("")
     L.append("The browser's path-tracer hand-off (Penumbra against three-gpu-pathtracer at the moment "
              "the path tracer takes over) has its own table: [handoff.md](handoff.md) "
              "(`node tools/handoff-eval.mjs`).")
