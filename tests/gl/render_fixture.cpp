@@ -8,16 +8,8 @@
 namespace penumbra::test {
 
 Mesh quadMesh(float size, float y, int material) {
-  Mesh m;
-  Primitive p;
   const float h = size * 0.5f;
-  p.positions = {{-h, y, -h}, {-h, y, h}, {h, y, h}, {h, y, -h}};
-  p.normals.assign(4, glm::vec3(0, 1, 0));
-  p.indices = {0, 1, 2, 0, 2, 3};
-  p.material = material;
-  for (auto& v : p.positions) p.bounds.extend(v);
-  m.primitives.push_back(std::move(p));
-  return m;
+  return rectangle({-h, y, -h}, {0, 0, size}, {size, 0, 0}, {0, 1, 0}, material);
 }
 
 Mesh rectangle(glm::vec3 p0, glm::vec3 e1, glm::vec3 e2, glm::vec3 n, int material) {
