@@ -18,7 +18,8 @@ glm::vec2 r2(uint32_t index);
 glm::vec2 seedOffset(uint32_t seed, uint32_t stream);
 
 // Sub-pixel jitter of frame `frame` (1-based) in pixels, in [-0.5, 0.5]^2. Frame 1 is
-// unjittered; later frames follow the Halton (2, 3) sequence, rotated by the seed.
+// unjittered; later frames follow a Kronecker sequence rotated by the seed, which stays
+// centred on the pixel on every k-th frame (the frames a light's samples land on).
 glm::vec2 jitter(int frame, uint32_t seed);
 
 enum class LightShape { Rect, Disk, Point };
