@@ -41,7 +41,8 @@ std::vector<Block> planBlocks(const ProgressiveSettings& s, bool firstLight) {
   }
   std::vector<Block> blocks{
       {1, kFirstBlockFrames, directStartFrame(kFirstBlockFrames, s.directDelay, firstLight)}};
-  for (int b = kFirstBlockFrames; b < m; b *= 2) blocks.push_back({b + 1, std::min(2 * b, m), b + 1});
+  for (int b = kFirstBlockFrames; b < m; b *= 2)
+    blocks.push_back({b + 1, std::min(2 * b, m), b + 1});
   return blocks;
 }
 
@@ -63,14 +64,14 @@ void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
     const int directFrames = block.end - (early ? block.begin : block.directStart) + 1;
     const int n = single               ? 1
                   : s.lightSamples > 0 ? s.lightSamples
-                  : s.frames > 0 ? samplesFor(directFrames, static_cast<int>(lights.size()))
+                  : s.frames > 0       ? samplesFor(directFrames, static_cast<int>(lights.size()))
                                  : blockSamples(directFrames, static_cast<int>(lights.size()));
     // Frame 1's first light took one frame of the first block's weight.
     const int share = len - (firstLight && !early && block.begin == 1 && !single ? 1 : 0);
     if (share <= 0) continue;
-    auto pts = lightSamplePoints(n, lights[i].shape, lights[i].aspect,
-                                 s.seed + 7919u * static_cast<uint32_t>(i) +
-                                     104729u * static_cast<uint32_t>(blockIndex));
+    auto pts = lightSamplePoints(
+        n, lights[i].shape, lights[i].aspect,
+        s.seed + 7919u * static_cast<uint32_t>(i) + 104729u * static_cast<uint32_t>(blockIndex));
     for (int j = 0; j < n; ++j) {
       LightSample ls;
       ls.light = static_cast<int>(i);
