@@ -3,6 +3,7 @@ import argparse
 import datetime
 import json
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -114,13 +115,21 @@ def metrics(img, ref, exposure):
 
 # ---------------------------------------------------------------- rendering
 def run_penumbra(binary, scene, out, size, frames, seed=1):
-    cmd = [binary, scene, "-o", out, "--size", size, "--frames", str(frames), "--seed", str(seed), "-q"]
+    """Renders one image; returns its wall time and, for frames "auto", the frames it took."""
+    cmd = [binary, scene, "-o", out, "--size", size, "--frames", str(frames), "--seed", str(seed)]
+    if frames != "auto":
+        cmd.append("-q")  # an automatic view's summary line says how many frames it took
     t0 = time.monotonic()
     r = subprocess.run(["nice", "-n", "15"] + cmd, capture_output=True, text=True)
     dt = time.monotonic() - t0
     if r.returncode != 0:
         raise RuntimeError("penumbra-render failed: %s\n%s" % (" ".join(cmd), r.stderr))
-    return dt
+    if frames != "auto":
+        return dt, frames
+    m = re.search(r"(\d+) frames at \d+x\d+", r.stdout + r.stderr)
+    if not m:
+        raise RuntimeError("penumbra-render printed no frame count: %s" % " ".join(cmd))
+    return dt, int(m.group(1))
 
 
 def ref_commands(scene, cache_dir, size, samples=CYCLES_SAMPLES):
@@ -134,7 +143,8 @@ def ref_commands(scene, cache_dir, size, samples=CYCLES_SAMPLES):
 # ---------------------------------------------------------------- figures
 def plot_error_time(path, name, rows, cycles_s):
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.4))
-    pen = [r for r in rows if r["renderer"] == "penumbra"]
+    pen = [r for r in rows if r["renderer"] == "penumbra" and not r.get("auto")]
+    auto = [r for r in rows if r["renderer"] == "penumbra" and r.get("auto")]
     c2 = [r for r in rows if r["renderer"] == "cycles2"]
     eev = [r for r in rows if r["renderer"] == "eevee"]
     for ax, key, label in zip(axes, ("rmse", "mae_tm", "ssim"),
@@ -143,6 +153,9 @@ def plot_error_time(path, name, rows, cycles_s):
         for r in pen:
             ax.annotate("%d" % r["frames"], (r["seconds"], r[key]), textcoords="offset points",
                         xytext=(4, 4), fontsize=8)
+        if auto:
+            ax.plot([auto[0]["seconds"]], [auto[0][key]], "*", color="tab:red", markersize=10,
+                    label="Penumbra auto (%d frames)" % auto[0]["frames"])
         if eev:
             ax.plot([r["seconds"] for r in eev], [r[key] for r in eev], "s", color="tab:blue",
                     label="Eevee %d" % EEVEE_SAMPLES)
@@ -209,7 +222,9 @@ def main():
                                            "build-eval/tools/render/penumbra-render") if os.path.exists(p)), None)
     if not binary:
         sys.exit("evaluate: no penumbra-render; build it or pass --render")
-    frames = [int(f) for f in a.frames.split(",")]
+    # "auto": the default view, until measured converged (issue #36's time to converged)
+    frames = [f if f == "auto" else int(f) for f in a.frames.split(",")]
+    counts = [f for f in frames if f != "auto"]
     os.makedirs(a.out, exist_ok=True)
     results = {}
     skipped = []
@@ -239,17 +254,19 @@ def main():
         rows = []
         images = {}
         for k in frames:
-            out = os.path.join(cache, "penumbra_f%04d.exr" % k)
-            dt = run_penumbra(binary, scene, out, size, k)
+            out = os.path.join(cache, "penumbra_%s.exr" % ("auto" if k == "auto" else "f%04d" % k))
+            dt, taken = run_penumbra(binary, scene, out, size, k)
             img = read_rgb(out)
             if img.shape != ref.shape:
                 raise RuntimeError("%s: size mismatch %s vs %s" % (name, img.shape, ref.shape))
             images[k] = img
-            rows.append(dict(renderer="penumbra", frames=k, seconds=dt, **metrics(img, ref, exposure)))
-            print("%s penumbra %4d frames %6.2f s  %s" % (name, k, dt, rows[-1]))
-        final = images[max(frames)]
-        for row in rows:  # convergence: distance to Penumbra's own longest render
-            row["rmse_self"] = float(np.sqrt(np.mean((images[row["frames"]] - final) ** 2)))
+            rows.append(dict(renderer="penumbra", frames=taken, seconds=dt, auto=k == "auto",
+                             **metrics(img, ref, exposure)))
+            print("%s penumbra %4d frames%s %6.2f s  %s" % (name, taken, " (auto)" if k == "auto" else "",
+                                                         dt, rows[-1]))
+        final = images[max(counts)]
+        for row, k in zip(rows, frames):  # convergence: distance to Penumbra's own longest render
+            row["rmse_self"] = float(np.sqrt(np.mean((images[k] - final) ** 2)))
         eimg = read_rgb(eev)
         rows.append(dict(renderer="eevee", frames=einfo["samples"], seconds=einfo["render_seconds"],
                          **metrics(eimg, ref, exposure)))
@@ -264,13 +281,13 @@ def main():
                          "cycles": cinfo, "eevee": einfo,
                          "ref_commands": ref_commands(scene, cache, size, cinfo["samples"]),
                          "ref_mean": [float(v) for v in ref.mean(axis=(0, 1))],
-                         "pen_mean": [float(v) for v in images[max(frames)].mean(axis=(0, 1))],
+                         "pen_mean": [float(v) for v in images[max(counts)].mean(axis=(0, 1))],
                          "eevee_mean": [float(v) for v in eimg.mean(axis=(0, 1))]}
         plot_error_time(os.path.join(a.out, "%s_error_time.png" % name), name, rows, cinfo["render_seconds"])
         strip_frames = [k for k in (1, 16, 128) if k in images]
         panels = [("Penumbra %d frames" % k, images[k]) for k in strip_frames]
         panels += [("Eevee %d samples" % einfo["samples"], eimg), ("Cycles %d spp" % cinfo["samples"], ref)]
-        last = images[max(frames)]
+        last = images[max(counts)]
         diff = luma(np.abs(display(last, exposure) - display(ref, exposure)))
         plot_strip(os.path.join(a.out, "%s_strip.png" % name), name, panels, diff, exposure)
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M")
@@ -364,20 +381,22 @@ def write_report(a, results, skipped, frames, when):
         if r.get("when") and r["when"] != when:
             L.append("Rendered on %s UTC (a later run covered other scenes)." % r["when"])
             L.append("")
-        L.append("| renderer | frames / samples | time (s) | RMSE linear | MAE tone-mapped | SSIM | RMSE to own %d-frame image |" % max(frames))
+        longest = max(f for f in frames if f != "auto")
+        L.append("| renderer | frames / samples | time (s) | RMSE linear | MAE tone-mapped | SSIM | RMSE to own %d-frame image |" % longest)
         L.append("|---|---:|---:|---:|---:|---:|---:|")
         for row in r["rows"]:
             if row["renderer"] == "cycles":
                 L.append("| Cycles (reference) | %d spp | %.1f | - | - | - | |" % (row["frames"], row["seconds"]))
             else:
-                L.append("| %s | %d | %.1f | %.4f | %.4f | %.3f | %s |" % (
+                L.append("| %s | %s | %.1f | %.4f | %.4f | %.3f | %s |" % (
                     {"penumbra": "Penumbra", "eevee": "Eevee",
-                     "cycles2": "Cycles, independent render"}[row["renderer"]], row["frames"],
+                     "cycles2": "Cycles, independent render"}[row["renderer"]],
+                    "%d (auto: converged)" % row["frames"] if row.get("auto") else "%d" % row["frames"],
                     row["seconds"], row["rmse"], row["mae_tm"], row["ssim"],
                     "%.4f" % row["rmse_self"] if "rmse_self" in row else ""))
         L.append("")
         L.append("Mean radiance (linear RGB): Cycles %s, Penumbra %d frames %s, Eevee %s." % (
-            fmt_mean(r["ref_mean"]), max(frames), fmt_mean(r["pen_mean"]), fmt_mean(r["eevee_mean"])))
+            fmt_mean(r["ref_mean"]), longest, fmt_mean(r["pen_mean"]), fmt_mean(r["eevee_mean"])))
         L.append("")
         L.append("![%s error versus time](%s_error_time.png)" % (name, name))
         L.append("")
