@@ -200,9 +200,16 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
     case StepKind::ShadowMap:
     case StepKind::PointShadow:
       return shadowUnit(step, fs);
-    case StepKind::Lighting:
-      return [this, b, t, k, accumulate = step.accumulate]() -> Status {
-        band(t);
+    case StepKind::Lighting: {
+      // With transmission the lit frame is copied behind the glass, which refracts pixels from
+      // anywhere on screen, skipped tiles included: those must hold this frame's light, not
+      // the last frame that drew them (a frozen single sample, which showed as 8x8 blocks in a
+      // glass sphere). The compose and the accumulation after it keep the tile mask.
+      const bool feedsBehind = std::any_of(
+          fs.steps.begin(), fs.steps.end(),
+          [](const progressive::FrameStep& s) { return s.kind == StepKind::CopyBehind; });
+      return [this, b, t, k, accumulate = step.accumulate, feedsBehind]() -> Status {
+        band(t, !feedsBehind);
         const Status st = lighting->draw(pending.batches[static_cast<size_t>(b)]);
         if (st) {
           if (t == k - 1) ++stats.lightingPasses;
@@ -212,6 +219,7 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
         endBand();
         return st;
       };
+    }
     case StepKind::CopyBehind:
       return [this]() -> Status {
         PN_TRY(lighting->copyBehind(pending.batches[0]));

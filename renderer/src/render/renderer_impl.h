@@ -277,9 +277,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   // Restricts drawing to band t of the pending frame (no-op unsplit). Bands cover the drawn
   // part bottom-up, rows [t h / k, (t + 1) h / k).
-  // Also where the frame's units over the image apply the tile mask (adaptive frames).
-  void band(int t) const {
-    if (tilesSkipped) gl::setStencil(gl::StencilMode::SkipMarked);
+  // Also where the frame's units over the image apply the tile mask (adaptive frames), unless
+  // `maskTiles` is false: a unit whose output other pixels read this frame must draw them all.
+  void band(int t, bool maskTiles = true) const {
+    if (tilesSkipped && maskTiles) gl::setStencil(gl::StencilMode::SkipMarked);
     if (pending.tiles <= 1) return;
     const int h = pending.drawHeight, k = pending.tiles;
     const int y0 = t * h / k, y1 = (t + 1) * h / k;
