@@ -65,17 +65,31 @@ TEST(ProbeGridTest, EveryProbeOncePerSweep) {
 }
 
 TEST(ProbeGridTest, CapturesTaperAsTheVolumeSettles) {
-  // 64 probes, two a frame by default: eight a frame while young, two, then one once settled.
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 0.0, 2), 8);
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 1.99, 9), 8);
-  EXPECT_EQ(probeCapturesThisFrame(2, 64, 2.0, 17), 2);
+  // 64 probes, two a frame by default: a sweep every four frames (16 a frame) until every
+  // probe has four captures, then one a frame once settled.
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 0.0, 2), 16);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 1.99, 9), 16);
+  EXPECT_EQ(probeCapturesThisFrame(2, 64, 3.99, 17), 16);
   EXPECT_EQ(probeCapturesThisFrame(2, 64, 4.0, 90), 1);
   EXPECT_EQ(probeCapturesThisFrame(6, 128, 5.0, 90), 3);
+  // A small volume fills as fast in frames (16 probes: four a frame), a setting above the
+  // fill rate wins, and a large one is held to 16 captures a frame.
+  EXPECT_EQ(probeCapturesThisFrame(2, 16, 0.0, 2), 4);
+  EXPECT_EQ(probeCapturesThisFrame(8, 16, 3.0, 2), 8);
+  EXPECT_EQ(probeCapturesThisFrame(2, 4096, 0.0, 2), 16);
   // Never more than the volume holds, never fewer than one before it has settled.
   EXPECT_EQ(probeCapturesThisFrame(2, 1, 0.0, 2), 1);
-  EXPECT_EQ(probeCapturesThisFrame(0, 8, 3.0, 2), 1);
-  EXPECT_EQ(probeCapturesThisFrame(2, 4096, 0.0, 2), 16);
+  EXPECT_EQ(probeCapturesThisFrame(0, 3, 3.0, 2), 1);
   EXPECT_EQ(probeCapturesThisFrame(2, 0, 0.0, 2), 0);
+  // Every probe settles within about 16 frames for any volume up to 64 probes.
+  for (int count : {1, 5, 16, 27, 64}) {
+    double captures = 0.0;
+    int frame = 2;
+    for (; captures / count < kProbeSettledCaptures; ++frame) {
+      captures += probeCapturesThisFrame(2, count, captures / count, frame);
+    }
+    EXPECT_LE(frame, 18) << count;
+  }
   // A small settled volume: at most a sweep per 32 frames, spread evenly (16 probes: every
   // other frame; 6 probes asking for 6 a frame: 6 in 32 frames).
   for (const auto& [count, perFrame, expected] :
@@ -101,20 +115,20 @@ TEST(ProbeGridTest, CacheRemadeEverMoreRarely) {
     const double mean = captured / count;
     if (remakeProbeCache(last < 0 ? -1 : frame - last, mean, then)) {
       if (last >= 0) {
-        EXPECT_GE(frame - last, mean < 2.0 ? 2 : 8) << frame;
+        EXPECT_GE(frame - last, mean < kProbeSettledCaptures ? 2 : 8) << frame;
       }
-      (mean < 2.0 ? young : settled) += 1;
+      (mean < kProbeSettledCaptures ? young : settled) += 1;
       last = frame;
       then = mean;
     }
     captured += probeCapturesThisFrame(2, count, mean, frame);
   }
-  // Every other frame while young (16 frames), then a remake each time the captures grow by a
-  // quarter: logarithmic in the frame count (from 2 to about 17 captures a probe: about 10).
+  // Every other frame while filling (16 frames), then a remake each time the captures grow by
+  // a quarter: logarithmic in the frame count (from 4 to about 20 captures a probe: about 7).
   EXPECT_GE(young, 6);
   EXPECT_LE(young, 9);
-  EXPECT_GE(settled, 6);
-  EXPECT_LE(settled, 14);
+  EXPECT_GE(settled, 5);
+  EXPECT_LE(settled, 12);
   // A new view remakes at once.
   EXPECT_TRUE(remakeProbeCache(-1, 10.0, 10.0));
 }

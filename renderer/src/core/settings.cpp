@@ -153,8 +153,8 @@ const SettingInfo kSchema[] = {
      PN_FIELD(progressive.probeDensity, float)},
     {"probesPerFrame", "progressive", "probesPerFrame", "--probes-per-frame", SettingType::Int, 1,
      64, false, false, false, true,
-     "probe captures per intermediate frame (more while the volume is young, half as many "
-     "once every probe has four, at most a sweep per 32 frames then)",
+     "probe captures per intermediate frame (a quarter of the volume a frame while it fills, "
+     "half as many once every probe has four, at most a sweep per 32 frames then)",
      PN_FIELD(progressive.probesPerFrame, int)},
     {"seed", "progressive", "seed", "--seed", SettingType::UInt, 0, 4294967295.0, false, false,
      false, true, "seed of the sample sequences", PN_FIELD(progressive.seed, uint32_t)},

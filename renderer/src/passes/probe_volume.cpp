@@ -274,7 +274,7 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
                .depthWrite = false,
                .blend = gl::Blend::ConstantMix,
                .cull = gl::Cull::None,
-               .blendWeight = 1.0f / static_cast<float>(std::min(n, kHistory))});
+               .blendWeight = 1.0f / static_cast<float>(std::clamp(n - kReplaced, 1, kHistory))});
     const int tx = layout.origin[map].x + (probe % grid_.columns()) * tile;
     const int ty = layout.origin[map].y + (probe / grid_.columns()) * tile;
     gl::setViewport(tx, ty, tile, tile);

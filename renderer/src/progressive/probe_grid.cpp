@@ -75,10 +75,11 @@ std::vector<int> probesForCapture(const ProbeGrid& grid, uint64_t capture, int p
 int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int frame) {
   if (count <= 0) return 0;
   const int n = std::max(perFrame, 1);
-  if (meanCaptures < kProbeYoungCaptures) {
-    return std::min(std::max(n, std::min((count + 7) / 8, 16)), count);
+  if (meanCaptures < kProbeSettledCaptures) {
+    return std::min(std::max(n, std::min((count + kProbeFillFrames - 1) / kProbeFillFrames,
+                                         kProbeFillCaptures)),
+                    count);
   }
-  if (meanCaptures < kProbeSettledCaptures) return std::min(n, count);
   // Settled: a fractional rate, spread evenly over the frames.
   const double rate = std::min(static_cast<double>(std::max(1, n / 2)), count / 32.0);
   const double f = std::max(frame, 1);
@@ -87,9 +88,9 @@ int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int fra
 
 bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen) {
   if (framesSince < 0) return true;
-  if (meanCaptures < kProbeYoungCaptures) return framesSince >= 2;
+  if (meanCaptures < kProbeSettledCaptures) return framesSince >= 2;
   return framesSince >= 8 &&
-         (meanCapturesThen < kProbeYoungCaptures || meanCaptures >= 1.25 * meanCapturesThen);
+         (meanCapturesThen < kProbeSettledCaptures || meanCaptures >= 1.25 * meanCapturesThen);
 }
 
 }  // namespace penumbra::progressive
