@@ -199,7 +199,7 @@ vec3 backIrradiance(Layers L) {
   if (PN_PROBES != 0) {
     vec4 room;
     vec4 pv = probeIrradiance(vWorldPos, -L.n, L.v, -L.n, false, room);
-    if (pv.a > 1e-3) e = pv.rgb;
+    e = mix(e, pv.rgb, pv.a);
   }
 #endif
   return e;
@@ -244,11 +244,18 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
 #endif
   if (PN_PROBES != 0) {
 #if PN_CAPTURE
-    // Captures build on what the volume holds, nothing else: each adds a bounce.
+    // Captures build on what the volume holds, nothing else: each adds a bounce (the usable
+    // probes' answer alone; the environment's share would light an enclosed room's first
+    // captures with the unoccluded sky).
     irradiance = pv.rgb;
 #else
     if (pv.a > 1e-3) {
+      // The cache holds the mix already (its alpha only says whether the probes answered).
+#if !(PN_OCCLUSION && PN_PROBE_CACHE)
+      irradiance = mix(irradiance, pv.rgb, pv.a);
+#else
       irradiance = pv.rgb;
+#endif
       // Glossy reflections of the room: where the probes see geometry toward r, their
       // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
       // surface gets rough (the probes' maps have no mip chain).
@@ -297,7 +304,7 @@ void writeProbeCache(Layers L) {
   vec4 pv = probeIrradianceWeights(vWorldPos, L.n, L.v, specularReflection(L.v, L.n),
                                    showsRoom > 0.01, room, weights);
   float key = probeCacheKey();
-  cacheIrradiance = vec4(pv.rgb, pv.a > 1e-3 ? key : -key);
+  cacheIrradiance = vec4(mix(envIrradiance(L.n), pv.rgb, pv.a), pv.a > 1e-3 ? key : -key);
   cacheRoom = room;
   cacheWeights = vec4(pv.a > 1e-3 ? weights.xyz : vec3(0.0), cacheIrradiance.a);
 }

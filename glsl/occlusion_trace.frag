@@ -88,9 +88,11 @@ void main() {
     vec4 pv = probeRadianceToward(p, n, v, dir);
 #endif
     probesAnswer = pv.a > 1e-3;
-    unoccluded = pv.rgb;
+    // The unusable probes' share stands for the environment (probeRadianceToward).
+    unoccluded = pv.a < 0.999 ? mix(envRadiance(dir, 0.5), pv.rgb, pv.a) : pv.rgb;
+#else
+    unoccluded = envRadiance(dir, 0.5);
 #endif
-    if (!probesAnswer) unoccluded = envRadiance(dir, 0.5);
     // Clamped like the hit's radiance: a sun behind a blocker must not bring back a huge
     // negative sample.
     float peak = max(unoccluded.r, max(unoccluded.g, unoccluded.b));

@@ -108,11 +108,26 @@ float probeVisibility(ivec3 c, vec2 tile, vec3 p, vec3 q, vec3 n, vec2 atlasSize
   return w;
 }
 
-// Irradiance at p for normal n, seen from direction v (unit, toward the viewer), and the
-// summed weight of the captured probes it comes from (0: none yet, use something else). Outside
-// captures, and with `glossy`, also the probes' radiance toward r (rgb) and the share of it that
-// is geometry (a). `weights`: the four probes' normalized weights (probeTetrahedron's order),
-// which the per-view cache keeps for the occlusion rays' control variate.
+// How far the usable probes' answer is trusted, from their share of the barycentric weight
+// (`coverage`): wholly from kProbeTrustedCoverage on, the environment's answer mixed in for
+// the rest below it. Barycentric weights are linear over a cell, so the mix is continuous;
+// renormalizing over the usable probes alone switched to the environment only where none was
+// left, a hard seam along the cells around buried probes (a rectangle across the milk truck's
+// side, a 20 % step on a block's face in ProbeVolumeGLTest). Mixing by the visibility-weighted
+// share instead left a step where the one usable probe's view of the point is cut off, and
+// mixing by the whole coverage darkened an interior's walls by its buried probes (its
+// environment is no answer for its rooms): from a quarter on, the probes answer alone.
+const float kProbeTrustedCoverage = 0.25;
+float probeTrust(float coverage) { return clamp(coverage / kProbeTrustedCoverage, 0.0, 1.0); }
+
+// Irradiance at p for normal n, seen from direction v (unit, toward the viewer), from the
+// usable probes (captured and not buried in geometry), and (alpha) how far it is trusted
+// (probeTrust): the caller mixes the environment's answer in for the rest,
+// mix(E_env, rgb, a). Outside captures, and with `glossy`, also the probes' radiance toward r
+// (rgb) and the share of it that is geometry (a, the trust included). `weights`: the four
+// probes' weights (probeTetrahedron's order), the usable ones' scaled to the trust and the
+// rest of it spread over the unusable ones (the environment's share), which the per-view
+// cache keeps for the occlusion rays' control variate.
 vec4 probeIrradianceWeights(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance,
                             out vec4 weights) {
   // n and r are the same for every probe: encode them once.
@@ -123,23 +138,26 @@ vec4 probeIrradianceWeights(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec
   vec3 q = probeTetrahedron(p, n, v, cells, tri);
   vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
   vec4 radSum = vec4(0.0);
-  weights = vec4(0.0);
+  vec4 usableWeights = vec4(0.0);
+  vec4 unusableTri = vec4(0.0);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   float coverage = 0.0;
   for (int i = 0; i < 4; ++i) {
     vec2 tile = probeTile(cells[i]);
-    float w = probeVisibility(cells[i], tile, p, q, n, atlasSize);
     vec4 irr = textureLod(uProbeAtlas,
                           probeAtlasUv(tile, octN, float(PN_PROBE_IRRADIANCE_TEXELS),
                                        probeIrradianceOrigin(), atlasSize),
                           0.0);
-    float valid = irr.a > 0.5 ? 1.0 : 0.0;
-    w *= tri[i] * valid;
-    coverage += tri[i] * valid;
+    if (irr.a <= 0.5) {
+      unusableTri[i] = tri[i];
+      continue;
+    }
+    float w = tri[i] * probeVisibility(cells[i], tile, p, q, n, atlasSize);
+    coverage += tri[i];
     sum += w * irr.rgb;
     weightSum += w;
-    weights[i] = w;
+    usableWeights[i] = w;
 #if !PN_CAPTURE
     if (glossy) {
       vec4 rad = textureLod(uProbeAtlas,
@@ -150,9 +168,13 @@ vec4 probeIrradianceWeights(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec
     }
 #endif
   }
-  radiance = radSum.a > 0.0 ? vec4(radSum.rgb / radSum.a, radSum.a / weightSum) : vec4(0.0);
-  weights = weightSum > 0.0 ? weights / weightSum : vec4(0.0);
-  return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
+  float trust = weightSum > 0.0 ? probeTrust(coverage) : 0.0;
+  float unusable = dot(unusableTri, vec4(1.0));
+  weights = (weightSum > 0.0 ? usableWeights * (trust / weightSum) : vec4(0.0)) +
+            (unusable > 0.0 ? unusableTri * ((1.0 - trust) / unusable) : vec4(0.0));
+  radiance = radSum.a > 0.0 ? vec4(radSum.rgb / radSum.a, trust * radSum.a / weightSum)
+                            : vec4(0.0);
+  return weightSum > 0.0 ? vec4(sum / weightSum, trust) : vec4(0.0);
 }
 
 vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radiance) {
@@ -161,10 +183,11 @@ vec4 probeIrradiance(vec3 p, vec3 n, vec3 v, vec3 r, bool glossy, out vec4 radia
 }
 
 // The probes' radiance toward d, sky or geometry alike, with the weights probeIrradiance gives
-// p, n and v: its cosine-weighted mean over the hemisphere is their irradiance over pi. Alpha:
-// the captured probes' summed barycentric weight, as probeIrradiance's (0: no answer). A
-// probe's validity is one texel of its irradiance tile (the same in all of them), not a
-// filtered lookup: a software rasterizer pays four texels for one of those.
+// p, n and v: its cosine-weighted mean over the hemisphere is their irradiance over pi. As
+// probeIrradiance: the usable probes' answer and (alpha) its trust, the caller mixing the
+// environment's in for the rest (0: no answer). A probe's validity is one texel of
+// its irradiance tile (the same in all of them), not a filtered lookup: a software rasterizer
+// pays four texels for one of those.
 vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
   ivec3 cells[4];
   float tri[4];
@@ -179,17 +202,18 @@ vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
   for (int i = 0; i < 4; ++i) {
     vec2 tile = probeTile(cells[i]);
     ivec2 corner = irrOrigin + ivec2(tile) * irrTile;
-    float valid = texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5 ? 1.0 : 0.0;
-    float w = probeVisibility(cells[i], tile, p, q, n, atlasSize) * tri[i] * valid;
-    coverage += tri[i] * valid;
-    vec4 rad = textureLod(uProbeAtlas,
-                          probeAtlasUv(tile, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
-                                       atlasSize),
-                          0.0);
-    sum += w * rad.rgb;
-    weightSum += w;
+    if (texelFetch(uProbeAtlas, corner + 1, 0).a > 0.5) {
+      float w = probeVisibility(cells[i], tile, p, q, n, atlasSize) * tri[i];
+      vec4 rad = textureLod(uProbeAtlas,
+                            probeAtlasUv(tile, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                                         atlasSize),
+                            0.0);
+      sum += w * rad.rgb;
+      weightSum += w;
+      coverage += tri[i];
+    }
   }
-  return weightSum > 0.0 ? vec4(sum / weightSum, coverage) : vec4(0.0);
+  return weightSum > 0.0 ? vec4(sum / weightSum, probeTrust(coverage)) : vec4(0.0);
 }
 
 // The same radiance toward d, in expectation, with the weights a probeIrradianceWeights lookup
@@ -197,7 +221,8 @@ vec4 probeRadianceToward(vec3 p, vec3 n, vec3 v, vec3 d) {
 // with probability its weight (u uniform in [0, 1)), its nearest radiance texel. One texel and
 // no visibility tests instead of four bilinear lookups of each: a software rasterizer loads
 // every texel lane by lane, and those loads were most of the occlusion pass's cost. The mean
-// over frames is the same. Alpha: the total (1, or 0 where no probe answered).
+// over frames is the same. Alpha: the total (1), or 0 where no probe answered or the drawn one
+// is not usable (the caller then takes the environment's radiance: it stands for that probe).
 vec4 probeRadianceDrawn(vec3 p, vec3 n, vec3 v, vec3 d, vec3 w, float total, float u) {
   ivec3 cells[4];
   float tri[4];
@@ -205,7 +230,10 @@ vec4 probeRadianceDrawn(vec3 p, vec3 n, vec3 v, vec3 d, vec3 w, float total, flo
   float x = u * total;
   int pick = x < w.x ? 0 : x < w.x + w.y ? 1 : x < w.x + w.y + w.z ? 2 : 3;
   const int interior = PN_PROBE_RADIANCE_TEXELS;
-  ivec2 texel = ivec2(probeTile(cells[pick])) * (interior + 2) + 1 +
+  ivec2 tile = ivec2(probeTile(cells[pick]));
+  ivec2 corner = ivec2(probeIrradianceOrigin()) + tile * (PN_PROBE_IRRADIANCE_TEXELS + 2);
+  if (texelFetch(uProbeAtlas, corner + 1, 0).a <= 0.5) return vec4(0.0);
+  ivec2 texel = tile * (interior + 2) + 1 +
                 clamp(ivec2((octEncode(d) * 0.5 + 0.5) * float(interior)), ivec2(0),
                       ivec2(interior - 1));
   return vec4(texelFetch(uProbeAtlas, texel, 0).rgb, total);

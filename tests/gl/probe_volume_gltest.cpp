@@ -199,6 +199,63 @@ Scene litBoxWithBlock() {
   return s;
 }
 
+// A block standing on dark ground under a white sky, its volume laid out as the milk truck's
+// was (4 x 2 x 2 probes over a box a little larger than the block): the four lower probes in
+// the middle are buried in the block. Below the lower layer, the block's front face looked up
+// only buried probes (the sky answers); just above it, one usable probe above the block with a
+// tiny barycentric weight, renormalized to all of the answer. The face showed a hard step
+// there. It must vary smoothly: the largest step between vertically adjacent pixels of the
+// face's middle column, relative to their mean (the trust ramp, probeTrust, spreads the change
+// over a quarter of the cell).
+TEST_F(ProbeVolumeGLTest, BuriedProbesLeaveNoSeam) {
+  Scene s;
+  s.materials = {pureLambert(0.8f), pureLambert(0.1f)};
+  s.meshes.push_back(boxMesh({-2.0f, 0.0f, -0.6f}, {2.0f, 1.0f, 0.6f}, 0));
+  s.meshes.push_back(rectangle({-8.0f, 0.0f, 8.0f}, {16.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -16.0f},
+                               {0.0f, 1.0f, 0.0f}, 1));
+  finishScene(s);
+  s.probeBox = Bounds{{-3.0f, 0.0f, -1.0f}, {3.0f, 1.4f, 1.0f}};
+  s.probeCounts = {4, 2, 2};
+  RenderSettings rs = smallSettings(true);
+  rs.width = rs.height = 96;
+  rs.progressive.frames = 64;
+  auto r = makeRenderer(s, rs);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setEnvironment(uniformEnvironment(glm::vec3(1.0f))).ok());
+  Image img;
+  // Render twice: the second view starts with a settled volume.
+  meanRadiance(*r, {0.0f, 0.5f, 1.6f}, {0.0f, 0.5f, 0.6f});
+  meanRadiance(*r, {0.0f, 0.5f, 1.6f}, {0.0f, 0.5f, 0.6f}, &img);
+  // The face's rows: where the middle column sees the block (brighter than the ground).
+  const int x = img.width / 2;
+  auto lum = [&](int y) {
+    const float* p = img.pixel(x, y);
+    return (p[0] + p[1] + p[2]) / 3.0;
+  };
+  std::vector<int> rows;
+  for (int y = 0; y < img.height; ++y) {
+    if (lum(y) > 0.3) rows.push_back(y);
+  }
+  ASSERT_GT(rows.size(), 20u) << "the face fills too few rows";
+  double worst = 0.0;
+  int at = -1;
+  // From two rows below the top edge to a quarter of the face above the ground, whose contact
+  // shadow the occlusion rays still draw with a few percent of noise at 64 frames.
+  for (size_t i = 2; i + 1 < rows.size() * 3 / 4; ++i) {
+    const double a = lum(rows[i]), b = lum(rows[i + 1]);
+    const double step = std::abs(a - b) / (0.5 * (a + b));
+    if (step > worst) {
+      worst = step;
+      at = rows[i];
+    }
+  }
+  std::printf("block face: %zu rows, largest step between neighbours %.1f %% (row %d)\n",
+              rows.size(), 100.0 * worst, at);
+  // Measured: 5.9 % (the occlusion rays' noise near the ground; the ramp's steps 2 to 3 %); 20 %
+  // before, at the lower probes' height, and 12 % where the visibility-weighted share switched.
+  EXPECT_LT(worst, 0.08);
+}
+
 // The volume is a pure function of the scene, settings and the calls made: two renderers
 // give the same bits.
 TEST_F(ProbeVolumeGLTest, CapturesAreReproducible) {
