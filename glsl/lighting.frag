@@ -250,12 +250,8 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
     irradiance = pv.rgb;
 #else
     if (pv.a > 1e-3) {
-      // The cache holds the mix already (its alpha only says whether the probes answered).
-#if !(PN_OCCLUSION && PN_PROBE_CACHE)
+      // The environment's share by trust (the cache holds the mix already, alpha 1).
       irradiance = mix(irradiance, pv.rgb, pv.a);
-#else
-      irradiance = pv.rgb;
-#endif
       // Glossy reflections of the room: where the probes see geometry toward r, their
       // radiance replaces the sky's, blurred toward the cosine-weighted mean (E / pi) as the
       // surface gets rough (the probes' maps have no mip chain).

@@ -51,7 +51,7 @@ inline constexpr double kProbeSettledCaptures = 4.0;
 // frames, at most kProbeFillCaptures a frame, so a small or middling volume settles within
 // about 16 frames. The image is the mean of every frame, so each frame shaded by a volume
 // still filling leaves its deficit in the mean as a bias that falls only as 1/N: on the milk
-// truck, filling in 32 frames instead left 0.96 steps RMS at 64 frames against 0.73 (the same
+// truck, filling in 32 frames instead left 0.96 steps RMS at 64 frames against 0.82 (the same
 // captures, earlier). A settled volume takes half the setting, as its running means then move
 // by a few percent a sweep, less than the frame's own noise, and no more than a sweep per 32
 // frames (a small volume would otherwise recapture each probe every few frames, each capture
