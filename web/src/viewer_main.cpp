@@ -38,38 +38,9 @@
 #include "penumbra/render_job.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
+#include "viewer_state.h"
 
-namespace {
-
-namespace fs = std::filesystem;
-using nlohmann::json;
-using namespace penumbra;
-
-// Panoramas are prefiltered on the CPU in the page's only thread: small faces and few samples
-// keep that to about a second (docs/web.md has the measurement).
-constexpr int kPanoramaFaceSize = 64;
-constexpr int kPanoramaSamples = 32;
-
-struct Viewer {
-  std::string selector;
-  bool forceHalfFloat = false;
-  std::unique_ptr<GlContext> context;
-  std::unique_ptr<Renderer> renderer;
-  RenderSettings settings;
-  std::optional<Scene> scene;
-  int variant = -1;    // KHR_materials_variants: the one shown (-1: the default materials)
-  Camera sceneCamera;  // the loaded scene's own camera, for reset
-  Camera camera;       // the camera in use
-  PackedEnvironment environment = uniformEnvironment(glm::vec3(0.0f));
-  std::string environmentName = "black";
-  bool environmentFromUser = false;  // set through the API, not by a scene file
-  std::string lastError;
-  // A panorama being decoded in steps (pv_env_begin / pv_env_step / pv_env_finish).
-  std::optional<PanoramaLoader> pendingPanorama;
-  std::string pendingPanoramaName;
-  FramePart lastPart;  // what the last pv_step_part did
-  Image readback;      // backs the pointer pv_read returns until the next pv_read
-};
+namespace penumbra::web {
 
 std::unique_ptr<Viewer> gViewer;
 std::string gResult;  // backs the char* handed to JS until the next call
@@ -82,20 +53,6 @@ const char* finish(const json& j) {
 
 json errorJson(const std::string& message) {
   return {{"error", message}};
-}
-
-// Runs `body` (returning json) and turns any escape into {"error": ...}.
-template <class F>
-const char* guarded(F&& body) {
-  try {
-    return finish(body());
-  } catch (const std::bad_alloc&) {
-    return finish(errorJson("out of memory"));
-  } catch (const std::exception& e) {
-    return finish(errorJson(std::string("internal error: ") + e.what()));
-  } catch (...) {
-    return finish(errorJson("internal error: unknown exception"));
-  }
 }
 
 json vec3Json(const glm::vec3& v) {
@@ -225,23 +182,10 @@ json loadScene(Viewer& v, const std::string& path) {
   return j;
 }
 
-// Makes the staging folder the working directory for one load, so the loaders see the names
-// the user knows ("model.glb", "../env/sky.hdr") and their messages say those, not a staging
-// path. Restores "/" afterwards.
-struct InFolder {
-  bool ok = false;
-  explicit InFolder(const char* dir) {
-    std::error_code ec;
-    fs::current_path(dir, ec);
-    ok = !ec;
-  }
-  ~InFolder() {
-    std::error_code ec;
-    fs::current_path("/", ec);
-  }
-};
+}  // namespace penumbra::web
 
-}  // namespace
+using namespace penumbra;
+using namespace penumbra::web;
 
 extern "C" {
 
@@ -308,120 +252,6 @@ EMSCRIPTEN_KEEPALIVE const char* pv_load_scene(const char* dir, const char* file
     InFolder here(dir);
     if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
     return loadScene(**v, file);
-  });
-}
-
-// A packed environment (penumbra-prefilter) or a panorama (.hdr/.png, prefiltered here),
-// `file` staged in folder `dir`.
-EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char* file) {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    InFolder here(dir);
-    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
-    const std::string path = file;
-    auto env = loadEnvironment(path, panoramaOptions((*v)->settings.sunThreshold));
-    if (!env) return errorJson(env.message());
-    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
-    (*v)->environment = std::move(*env);
-    (*v)->environmentName = fs::path(path).filename().string();
-    (*v)->environmentFromUser = true;
-    return stateJson(**v);
-  });
-}
-
-// A large Radiance panorama in steps, so the page is never blocked for long: pv_env_begin
-// takes the file's `size` bytes at `data` (copied; not staged as a file: writing and reading
-// back 30 MB through the in-memory file system took 3 s) and reads its header ({width,
-// height} or {error}); pv_env_step decodes up to `rows` scanlines ({done} or {error});
-// pv_env_finish prefilters and sets it, as pv_set_environment does (the state, or {error}). A
-// new begin drops one in progress.
-EMSCRIPTEN_KEEPALIVE const char* pv_env_begin(const uint8_t* data, int size, const char* file) {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    (*v)->pendingPanorama.reset();
-    auto loader = PanoramaLoader::start(std::vector<uint8_t>(data, data + std::max(size, 0)),
-                                        file, panoramaOptions((*v)->settings.sunThreshold));
-    if (!loader) return errorJson(loader.message());
-    (*v)->pendingPanorama = std::move(*loader);
-    (*v)->pendingPanoramaName = file;
-    return {{"width", (*v)->pendingPanorama->width()}, {"height", (*v)->pendingPanorama->height()}};
-  });
-}
-
-EMSCRIPTEN_KEEPALIVE const char* pv_env_step(int rows) {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    if (!(*v)->pendingPanorama) return errorJson("no panorama is being loaded");
-    if (auto st = (*v)->pendingPanorama->step(rows); !st) {
-      (*v)->pendingPanorama.reset();
-      return errorJson(st.message());
-    }
-    return {{"done", (*v)->pendingPanorama->done()}};
-  });
-}
-
-EMSCRIPTEN_KEEPALIVE const char* pv_env_finish() {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    if (!(*v)->pendingPanorama || !(*v)->pendingPanorama->done()) {
-      return errorJson("no decoded panorama to finish");
-    }
-    auto env = (*v)->pendingPanorama->finish();
-    (*v)->pendingPanorama.reset();
-    if (!env) return errorJson(env.message());
-    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
-    (*v)->environment = std::move(*env);
-    (*v)->environmentName = fs::path((*v)->pendingPanoramaName).filename().string();
-    (*v)->environmentFromUser = true;
-    return stateJson(**v);
-  });
-}
-
-EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, float b) {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    PackedEnvironment env = uniformEnvironment(glm::vec3(r, g, b));
-    if (auto st = (*v)->renderer->setEnvironment(env); !st) return errorJson(st.message());
-    (*v)->environment = std::move(env);
-    (*v)->environmentName = "uniform";
-    (*v)->environmentFromUser = true;
-    return stateJson(**v);
-  });
-}
-
-// A built-in environment: "studio" (the neutral studio, as a scene file's "studio") stays for
-// later bare models like a file set through the API; "default" forgets the API's environment
-// and applies the rule (black for a scene with lights of its own, else the studio), which later
-// bare models follow too.
-EMSCRIPTEN_KEEPALIVE const char* pv_set_builtin_environment(const char* name) {
-  return guarded([&]() -> json {
-    auto v = viewer();
-    if (!v) return errorJson(v.message());
-    const std::string kind = name ? name : "";
-    if (kind != "studio" && kind != "default") {
-      return errorJson("unknown built-in environment '" + kind + "' (studio or default)");
-    }
-    // Without a scene the rule waits for one: loadScene applies it.
-    if (kind == "default" && !(*v)->scene) {
-      (*v)->environmentFromUser = false;
-      return stateJson(**v);
-    }
-    std::string envName = "studio";
-    auto env = kind == "studio"
-                   ? studioEnvironment()
-                   : resolveEnvironment({.kind = EnvironmentSpec::Kind::Default}, *(*v)->scene,
-                                        {}, &envName);
-    if (!env) return errorJson(env.message());
-    if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
-    (*v)->environment = std::move(*env);
-    (*v)->environmentName = envName;
-    (*v)->environmentFromUser = kind == "studio";
-    return stateJson(**v);
   });
 }
 
