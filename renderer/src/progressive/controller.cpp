@@ -77,8 +77,16 @@ Status Controller::finishFrame(FrameRenderer& renderer) {
   if (!tiles) return tiles.error();
   if (tiles->rms.empty()) return {};
   const double threshold = settings_.convergenceThreshold;
+  // Each tile's error from its last two changes (the first measured checkpoint has one).
+  std::vector<float> errors = tiles->rms;
+  if (previousRms_.size() == errors.size()) {
+    for (size_t i = 0; i < errors.size(); ++i) {
+      errors[i] = pooledError(tiles->rms[i], previousRms_[i]);
+    }
+  }
+  previousRms_ = tiles->rms;
   // The skipped tiles' changes are zero: their frozen ones stand in (TileSkip).
-  estimate_ = summarizeTiles(skip_.effective(tiles->rms), threshold, frame.frame);
+  estimate_ = summarizeTiles(skip_.effective(errors), threshold, frame.frame);
   stopped_ = estimate_.converged;
   if (!stopped_ && settings_.skipConvergedTiles && skip_.update(*tiles, threshold, frame.frame)) {
     PN_TRY(renderer.skipTiles(skip_.mask()));

@@ -101,6 +101,7 @@ class Controller {
   bool stopped_ = false;
   ConvergenceEstimate estimate_;
   TileSkip skip_;
+  std::vector<float> previousRms_;  // each tile's change at the checkpoint before
 
   void restart() {
     next_ = 1;
@@ -108,6 +109,7 @@ class Controller {
     stopped_ = false;
     estimate_ = {};
     skip_.reset();
+    previousRms_.clear();
   }
   // Frame next_ is complete: counts it and, at an automatic view's checkpoint, measures.
   Status finishFrame(FrameRenderer& renderer);

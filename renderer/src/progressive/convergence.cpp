@@ -33,6 +33,11 @@ ConvergenceEstimate summarizeTiles(std::span<const float> tileRms, double thresh
   return e;
 }
 
+float pooledError(float rms, float previousRms) {
+  if (!(previousRms >= 0.0f) || !std::isfinite(previousRms)) return rms;
+  return std::sqrt(0.5f * (rms * rms + 0.5f * previousRms * previousRms));
+}
+
 bool TileSkip::update(const TileChanges& changes, double threshold, int frame) {
   const size_t n = changes.rms.size();
   if (n == 0 || changes.max.size() != n) return false;

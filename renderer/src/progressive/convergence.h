@@ -4,11 +4,12 @@
 // the previous checkpoint N/2. With I_N = (A + B) / 2 for the means A and B of the two halves,
 // I_N - I_{N/2} = (B - A) / 2, whose variance is that of I_N itself: the change estimates the
 // standard error of the image shown now (for a bias that falls as 1/N, such as a mean still
-// holding the first frames of a filling probe volume, it is that bias). The view has converged
-// when the image's RMS change is under the threshold and 99 % of its tiles are under four
-// times the threshold (no region left visibly noisy: edges, whose coverage converges as
-// N^-3/4, keep single tiles over it longest). GL-free; the renderer draws the tiles
-// (glsl/convergence.frag).
+// holding the first frames of a filling probe volume, it is that bias). A tile's error is
+// estimated from its last two changes (pooledError: one tile's change is a noisy figure). The
+// view has converged when the RMS of those estimates over the image is under the threshold and
+// 99 % of the tiles are under four times the threshold (no region left visibly noisy: edges,
+// whose coverage converges as N^-3/4, keep single tiles over it longest). GL-free; the
+// renderer draws the tiles (glsl/convergence.frag).
 #pragma once
 
 #include <cstdint>
@@ -37,9 +38,20 @@ struct TileChanges {
   std::vector<float> max;
 };
 
+// A tile's error at checkpoint N from its change since N/2 (`rms`) and the change before that
+// (`previousRms`, N/4 to N/2). Each estimates the error's variance under the same 1/sqrt(N)
+// law the estimate assumes throughout: rms^2 that at N, previousRms^2 that at N/2, twice as
+// large. Their mean, (rms^2 + previousRms^2 / 2) / 2, has half the variance of rms^2 alone:
+// one tile's change is a noisy figure (a few edge pixels carry it), and the 99th percentile of
+// noisy figures sits above that of the errors they estimate. For an error falling faster than
+// 1/sqrt(N) (a filling volume's 1/N bias, stratified sampling) the earlier change is the larger
+// and the estimate errs high. `rms` alone where previousRms is negative or not finite.
+float pooledError(float rms, float previousRms);
+
 // The tiles an automatic view no longer shades, kept by the controller. A skipped tile stays
 // skipped until the view restarts; its change at the checkpoint that froze it stands in for
 // its (zero) change afterwards, so the view's estimate stays the error of the image shown.
+// Which tiles skip is decided on the checkpoint's own change (the stricter measure).
 class TileSkip {
  public:
   void reset() { *this = {}; }
