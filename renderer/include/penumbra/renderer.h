@@ -90,9 +90,9 @@ struct FrameStats {
 
 // How far a view is from done. An automatic view (ProgressiveSettings::frames 0) measures its
 // displayed image at checkpoints (frames 8, 16, 32, ...; docs/architecture.md, "Measured
-// convergence") and stops when its displayed image changed by less than convergenceThreshold
-// 8-bit steps (RMS) since the previous checkpoint and 99 % of its 8x8 tiles by less than four
-// times that.
+// convergence") and stops when its displayed image's error, estimated per 8x8 tile from its
+// changes between the last checkpoints, is under convergenceThreshold 8-bit steps (RMS) and
+// that of 99 % of its tiles under four times that.
 struct ConvergenceInfo {
   bool automatic = false;       // frames is auto
   bool measured = false;        // a checkpoint after the first has been measured in this view

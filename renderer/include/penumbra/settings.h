@@ -24,9 +24,9 @@ struct ProgressiveSettings {
   // image is measured converged (progressive/convergence.h), at most maxFrames.
   int frames = 0;
   int maxFrames = 1024;  // auto's cap
-  // Auto: converged when the displayed image (8-bit steps, RMS) changed by less than this
-  // between the last two checkpoints (frames 8, 16, 32, ...) and 99 % of its 8x8 tiles by less
-  // than four times this (progressive/convergence.h).
+  // Auto: converged when the displayed image's error (8-bit steps, RMS), estimated from its
+  // changes between the last checkpoints (frames 8, 16, 32, ...), is under this and that of
+  // 99 % of its 8x8 tiles under four times this (progressive/convergence.h).
   float convergenceThreshold = 1.0f;
   // Auto: adaptive frames. Tiles measured converged stop being shaded and accumulated (a
   // stencil mask), so the remaining frames go to penumbrae, glossy reflections and edges
