@@ -1,11 +1,14 @@
 // The probe volume (passes/probe_volume.h): multi-bounce light in a closed box against the
-// radiosity balance, no light through a thin wall, reproducible captures.
+// radiosity solution wall by wall, no light through a thin wall, reproducible captures.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
+#include <vector>
 
 #include "gpu/gpu_scene.h"
 #include "penumbra/environment.h"
@@ -79,41 +82,121 @@ RenderSettings smallSettings(bool volume) {
   return rs;
 }
 
-// A closed box of albedo rho lit by a rect light of area A_e and radiance L: every watt lands on
-// the walls and a share rho of it goes round again, so the area-weighted mean irradiance is
-// pi L A_e / (A (1 - rho)) and the mean radiance rho L A_e / (A (1 - rho)). From the box's
-// centre, six 90-degree views each show one wall, every pixel the same wall area: the mean
-// over the six images is the area-weighted mean.
-double closedBoxMean(bool volume, double* expected) {
+// The form factor from a point x with normal n to the polygon `v` (Lambert's formula: the sum
+// over its edges of the angle each spans times the normal's share of that edge's plane).
+double pointToPolygon(glm::dvec3 x, glm::dvec3 n, const std::array<glm::dvec3, 4>& v) {
+  double sum = 0.0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const glm::dvec3 a = glm::normalize(v[i] - x), b = glm::normalize(v[(i + 1) % v.size()] - x);
+    const glm::dvec3 c = glm::cross(a, b);
+    const double len = glm::length(c);
+    if (len > 1e-12) sum += std::atan2(len, glm::dot(a, b)) * glm::dot(n, c) / len;
+  }
+  return std::abs(sum) / (2.0 * std::numbers::pi);
+}
+
+// The radiosity solution of the closed box [-1, 1]^3 (Lambertian, albedo rho) lit by a square
+// rect light (side `size`, radiance `nits`) at height `y` facing down: each wall in k x k
+// patches, form factors from each patch's centre to every other patch exactly, iterated to the
+// balance. Each wall's mean radiance, the wall at boxAxes[i].
+const glm::vec3 boxAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+std::array<double, 6> boxRadiosity(double rho, double nits, double size, double y, int k) {
+  struct Patch {
+    glm::dvec3 centre, normal;
+    std::array<glm::dvec3, 4> corners;
+    int wall;
+  };
+  std::vector<Patch> patches;
+  for (int w = 0; w < 6; ++w) {
+    const glm::dvec3 axis(boxAxes[w]);
+    const glm::dvec3 u = std::abs(axis.x) > 0.5 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 v = glm::cross(axis, u);
+    for (int i = 0; i < k; ++i) {
+      for (int j = 0; j < k; ++j) {
+        auto at = [&](double a, double b) {
+          return axis + u * (2.0 * a / k - 1.0) + v * (2.0 * b / k - 1.0);
+        };
+        patches.push_back({at(i + 0.5, j + 0.5),
+                           -axis,
+                           {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)},
+                           w});
+      }
+    }
+  }
+  const size_t n = patches.size();
+  const double h = 0.5 * size;
+  const std::array<glm::dvec3, 4> lamp = {glm::dvec3(-h, y, -h), glm::dvec3(h, y, -h),
+                                          glm::dvec3(h, y, h), glm::dvec3(-h, y, h)};
+  std::vector<double> direct(n), form(n * n, 0.0), radiance(n, 0.0), next(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Patch& p = patches[i];
+    direct[i] =
+        p.centre.y < y ? std::numbers::pi * nits * pointToPolygon(p.centre, p.normal, lamp) : 0.0;
+    for (size_t j = 0; j < n; ++j) {
+      if (patches[j].wall != p.wall)
+        form[i * n + j] = pointToPolygon(p.centre, p.normal, patches[j].corners);
+    }
+  }
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (size_t i = 0; i < n; ++i) {
+      double e = direct[i];
+      for (size_t j = 0; j < n; ++j) e += std::numbers::pi * form[i * n + j] * radiance[j];
+      next[i] = rho / std::numbers::pi * e;
+    }
+    radiance.swap(next);
+  }
+  std::array<double, 6> walls{};
+  for (size_t i = 0; i < n; ++i)
+    walls[static_cast<size_t>(patches[i].wall)] += radiance[i] / (k * k);
+  return walls;
+}
+
+// The closed box of albedo rho lit by a rect light of area A_e and radiance L, seen from its
+// centre: six 90-degree views each show one wall, every pixel the same wall area, so a view's
+// mean is its wall's mean radiance. (Every watt lands on the walls and a share rho of it goes
+// round again: the area-weighted mean is rho L A_e / (A (1 - rho)).)
+std::array<double, 6> closedBoxWalls(bool volume) {
   const float rho = 0.5f, nits = 10.0f, size = 0.5f;
   Scene s;
   s.materials = {pureLambert(rho)};
   s.meshes.push_back(insideBox({-1, -1, -1}, {1, 1, 1}, 0));
   s.lights.push_back(ceilingLight({0.0f, 0.9f, 0.0f}, size, nits));
   finishScene(s);
-  *expected = rho * nits * size * size / (24.0 * (1.0 - rho));
   auto r = makeRenderer(s, smallSettings(volume));
-  if (!r) return -1.0;
-  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::array<double, 6> walls{};
+  if (!r) return walls;
   // One view first, so the volume has gone round a few times before the measured ones (the
-  // camera moves keep it). Measured: 4 % above the balance; 50 % below it without.
-  meanRadiance(*r, {0, 0, 0}, axes[0]);
-  double sum = 0.0;
-  for (const glm::vec3& a : axes) {
-    sum += meanRadiance(*r, {0, 0, 0}, a);
-  }
-  return sum / 6.0;
+  // camera moves keep it).
+  meanRadiance(*r, {0, 0, 0}, boxAxes[0]);
+  for (size_t i = 0; i < 6; ++i) walls[i] = meanRadiance(*r, {0, 0, 0}, boxAxes[i]);
+  return walls;
 }
 
-TEST_F(ProbeVolumeGLTest, ClosedBoxReachesTheRadiosityBalance) {
-  double expected = 0.0;
-  const double with = closedBoxMean(true, &expected);
-  const double without = closedBoxMean(false, &expected);
-  std::printf("closed box: mean radiance %.4f with the volume, %.4f without, %.4f expected\n", with,
-              without, expected);
-  EXPECT_NEAR(with, expected, 0.10 * expected);
+// Each wall against the radiosity solution, not only their mean. With uniformly emissive walls
+// the volume is exact; under a lamp its interpolation has a known parallax bias: a probe half a
+// cell from a wall sees the far side of the room with more weight than the wall does and
+// misses the strips of the walls beside it, and every capture feeds that into the next bounce
+// (docs/decisions/2026-12-05-probe-parallax.md). Measured: the ceiling, which faces the lit
+// floor, 18.5 % over, the other walls 4 to 5 %, the mean 5.9 %; 50 % below the balance without
+// the volume. The bounds hold that bias and no more: tighten them when it is fixed.
+TEST_F(ProbeVolumeGLTest, ClosedBoxWallsReachTheRadiositySolution) {
+  const std::array<double, 6> expected = boxRadiosity(0.5, 10.0, 0.5, 0.9, 12);
+  const std::array<double, 6> with = closedBoxWalls(true);
+  const std::array<double, 6> without = closedBoxWalls(false);
+  double meanWith = 0.0, meanExpected = 0.0, meanWithout = 0.0;
+  for (size_t i = 0; i < 6; ++i) {
+    std::printf("closed box, wall %zu: %.4f with the volume, %.4f without, %.4f radiosity\n", i,
+                with[i], without[i], expected[i]);
+    EXPECT_NEAR(with[i], expected[i], 0.22 * expected[i]) << "wall " << i;
+    meanWith += with[i] / 6.0;
+    meanExpected += expected[i] / 6.0;
+    meanWithout += without[i] / 6.0;
+  }
+  EXPECT_NEAR(meanWith, meanExpected, 0.08 * meanExpected);
+  // The closed form of the balance checks the solver.
+  EXPECT_NEAR(meanExpected, 0.5 * 10.0 * 0.25 / (24.0 * 0.5), 0.01 * meanExpected);
   // Screen-space light alone misses most of the bounces: the test can tell the difference.
-  EXPECT_LT(without, 0.85 * expected);
+  EXPECT_LT(meanWithout, 0.85 * meanExpected);
 }
 
 // An emissive panel that is not an area light's visible face lights the room through the
@@ -145,7 +228,7 @@ TEST_F(ProbeVolumeGLTest, EmissiveSurfacesLightTheRoom) {
     meanRadiance(*r, {0, 0, 0}, axes[0]);  // the volume goes round first
     for (const glm::vec3& a : axes) mean[proxy] += meanRadiance(*r, {0, 0, 0}, a) / 6.0;
   }
-  // The walls' balance (closedBoxMean's), and the panel itself: in the upward view it covers
+  // The walls' balance (closedBoxWalls'), and the panel itself: in the upward view it covers
   // (size / (2 y))^2 of the image (the view spans 2y at the panel's distance y).
   const double walls = rho * nits * size * size / (24.0 * (1.0 - rho));
   const double seen = nits * (size / (2.0 * y)) * (size / (2.0 * y)) / 6.0;

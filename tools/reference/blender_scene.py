@@ -78,6 +78,10 @@ def parse_args():
     # The bias budget's split of the direct term: the scene's lights alone (the world, and with
     # it the environment's sun, black).
     ap.add_argument("--no-world", action="store_true")
+    # Cycles only: no indirect clamp (Blender's default clamps indirect samples at 10, which
+    # removes energy from bright indirect paths); checks whether a reference is low by
+    # construction (the room (cm): the same mean to 4 digits).
+    ap.add_argument("--no-clamp", action="store_true")
     ap.add_argument("--material", choices=["gltf", "principled"], default="gltf",
                     help="gltf: glTF's BRDF as a node tree (default); principled: the importer's")
     return ap.parse_args(argv)
@@ -325,6 +329,9 @@ def main():
         # Light paths: defaults (12 bounces, indirect clamp 10, filter glossy 1) are kept
         # except the glossy filter, which blurs highlights a reference should keep sharp.
         c.blur_glossy = 0.0
+        if a.no_clamp:
+            c.sample_clamp_indirect = 0.0
+            c.sample_clamp_direct = 0.0
         if a.bounces >= 0:
             # Every kind of bounce to N (Blender's defaults stop diffuse and glossy paths at 4);
             # transparency (alpha) is not a bounce.
@@ -357,7 +364,8 @@ def main():
             "render_seconds": round(t1 - t0, 3), "scene": os.path.abspath(a.scene),
             "camera_node": g["nodes"][cam_node].get("name"), "proxies_camera_only": nproxy,
             "lights": made, "blender": bpy.app.version_string, "material": a.material,
-            "bounces": a.bounces,
+            "bounces": a.bounces, "clamp_indirect": None if a.engine != "cycles" else
+            scene.cycles.sample_clamp_indirect,
             "materials_rebuilt": rebuilt}
     with open(os.path.splitext(os.path.abspath(a.out))[0] + ".json", "w") as f:
         json.dump(info, f, indent=1)
