@@ -224,9 +224,8 @@ TEST_F(ProbeVolumeGLTest, EmissiveSurfacesLightTheRoom) {
     rs.progressive.frames = 32;
     auto r = makeRenderer(s, rs);
     ASSERT_TRUE(r);
-    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    meanRadiance(*r, {0, 0, 0}, axes[0]);  // the volume goes round first
-    for (const glm::vec3& a : axes) mean[proxy] += meanRadiance(*r, {0, 0, 0}, a) / 6.0;
+    meanRadiance(*r, {0, 0, 0}, boxAxes[0]);  // the volume goes round first
+    for (const glm::vec3& a : boxAxes) mean[proxy] += meanRadiance(*r, {0, 0, 0}, a) / 6.0;
   }
   // The walls' balance (closedBoxWalls'), and the panel itself: in the upward view it covers
   // (size / (2 y))^2 of the image (the view spans 2y at the panel's distance y).
