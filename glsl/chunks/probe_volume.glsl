@@ -35,6 +35,13 @@ vec2 probeDepthOrigin() {
 vec2 probeIrradianceOrigin() {
   return probeDepthOrigin() + vec2(0.0, float(uProbeRows * (PN_PROBE_DEPTH_TEXELS + 2)));
 }
+// Probe (column, row)'s relocation offset (units of the spacing): one texel a probe above the
+// maps.
+vec3 probeOffset(vec2 tile) {
+  int maps = max(uProbeRows * (PN_PROBE_RADIANCE_TEXELS + 2),
+                 uProbeRows * (PN_PROBE_DEPTH_TEXELS + PN_PROBE_IRRADIANCE_TEXELS + 4));
+  return texelFetch(uProbeAtlas, ivec2(tile) + ivec2(0, maps), 0).xyz;
+}
 
 // A lookup at p (normal n, v toward the viewer): the point q it is made from, off the surface
 // and mostly toward the viewer so that it does not start inside the wall (returned), and the
@@ -81,12 +88,12 @@ vec2 probeTile(ivec3 c) {
   return vec2(index - row * columns, row);
 }
 
-// How much the probe at grid cell c counts for a surface point p with normal n looked up from
-// q: a soft backface weight (probes behind the surface count less) times Chebyshev's bound on
+// How much the probe at grid cell c (where relocation moved it) counts for a surface point p
+// with normal n looked up from q: a soft backface weight (probes behind the surface count less) times Chebyshev's bound on
 // the probability that the probe sees q (no light through walls), small weights crushed (a
 // barely visible probe should not tint the result).
 float probeVisibility(ivec3 c, vec2 tile, vec3 p, vec3 q, vec3 n, vec2 atlasSize) {
-  vec3 probePos = uProbeOrigin + vec3(c) * uProbeSpacing;
+  vec3 probePos = uProbeOrigin + (vec3(c) + probeOffset(tile)) * uProbeSpacing;
   float back = (dot(normalize(probePos - p), n) + 1.0) * 0.5;
   float w = back * back + 0.05;
   vec3 fromProbe = q - probePos;

@@ -188,10 +188,12 @@ TEST_F(FirstLightGLTest, GlassRefractsTheCurrentLightOfSkippedTiles) {
   // skipped long before the sphere converges. What it refracts must be this frame's light
   // there, as without skipping: the copy behind the glass once held the last frame that drew a
   // skipped tile, and the sphere showed those frozen single samples as blocks.
-  // Half the default threshold: the view runs long enough (512 frames) for about a third of
-  // the tiles to be skipped (at the default one it stops at 128 frames with a tenth skipped).
+  // 0.6 of the default threshold: the view runs long enough (512 frames) for about a third of
+  // the tiles to be skipped (at the default one it stops at 128 frames with a tenth skipped; at
+  // half of it 15 % are skipped by the 512-frame cap since the outer probes sit nearer the
+  // walls, 2026-12-05-probe-relocation).
   const std::vector<std::pair<std::string, std::string>> settings{
-      {"frames", "auto"}, {"maxFrames", "512"}, {"convergenceThreshold", "0.5"},
+      {"frames", "auto"}, {"maxFrames", "512"}, {"convergenceThreshold", "0.6"},
       {"width", "160"},   {"height", "96"},     {"shadowMapSize", "256"}};
   auto on = loadAsset("showroom", settings);
   auto offSettings = settings;

@@ -173,12 +173,14 @@ std::array<double, 6> closedBoxWalls(bool volume) {
 }
 
 // Each wall against the radiosity solution, not only their mean. With uniformly emissive walls
-// the volume is exact; under a lamp its interpolation has a known parallax bias: a probe half a
-// cell from a wall sees the far side of the room with more weight than the wall does and
-// misses the strips of the walls beside it, and every capture feeds that into the next bounce
-// (docs/decisions/2026-12-05-probe-parallax.md). Measured: the ceiling, which faces the lit
-// floor, 18.5 % over, the other walls 4 to 5 %, the mean 5.9 %; 50 % below the balance without
-// the volume. The bounds hold that bias and no more: tighten them when it is fixed.
+// the volume is exact; under a lamp its interpolation has a parallax bias: a probe far from a
+// wall sees the far side of the room with more weight than the wall does and misses the strips
+// of the walls beside it, and every capture feeds that into the next bounce
+// (docs/decisions/2026-12-05-probe-parallax.md). With the outer probes half a cell in, the
+// ceiling, which faces the lit floor, was 18.5 % over, the other walls 4 to 5 %, the mean 5.9 %.
+// A tenth of a spacing in (decisions/2026-12-05-probe-relocation.md), measured: the ceiling
+// 5.0 %, the side walls 1.5 to 2.6 %, the floor 1.3 %, the mean 2.2 %; 50 % below the balance
+// without the volume.
 TEST_F(ProbeVolumeGLTest, ClosedBoxWallsAgainstARadiositySolution) {
   const std::array<double, 6> expected = boxRadiosity(0.5, 10.0, 0.5, 0.9, 12);
   const std::array<double, 6> with = closedBoxWalls(true);
@@ -187,12 +189,12 @@ TEST_F(ProbeVolumeGLTest, ClosedBoxWallsAgainstARadiositySolution) {
   for (size_t i = 0; i < 6; ++i) {
     std::printf("closed box, wall %zu: %.4f with the volume, %.4f without, %.4f radiosity\n", i,
                 with[i], without[i], expected[i]);
-    EXPECT_NEAR(with[i], expected[i], 0.22 * expected[i]) << "wall " << i;
+    EXPECT_NEAR(with[i], expected[i], 0.08 * expected[i]) << "wall " << i;
     meanWith += with[i] / 6.0;
     meanExpected += expected[i] / 6.0;
     meanWithout += without[i] / 6.0;
   }
-  EXPECT_NEAR(meanWith, meanExpected, 0.08 * meanExpected);
+  EXPECT_NEAR(meanWith, meanExpected, 0.04 * meanExpected);
   // The closed form of the balance checks the solver.
   EXPECT_NEAR(meanExpected, 0.5 * 10.0 * 0.25 / (24.0 * 0.5), 0.01 * meanExpected);
   // Screen-space light alone misses most of the bounces: the test can tell the difference.
@@ -231,7 +233,13 @@ TEST_F(ProbeVolumeGLTest, EmissiveSurfacesLightTheRoom) {
   // (size / (2 y))^2 of the image (the view spans 2y at the panel's distance y).
   const double walls = rho * nits * size * size / (24.0 * (1.0 - rho));
   const double seen = nits * (size / (2.0 * y)) * (size / (2.0 * y)) / 6.0;
-  EXPECT_NEAR(mean[0], walls + seen, 0.25 * walls) << "walls " << walls << ", panel " << seen;
+  // Measured: 27 % of the walls' share over (0.2478 against 0.2196; 20 % with the outer probes
+  // half a cell in). All of a surface's light here comes through the volume, and the lookup's
+  // offset off the surface (a fifth of a spacing along the normal) reaches the next layer of
+  // probes, nearer the panel: the floor is 40 % over. Weights from the surface point itself
+  // gave 0.7 %, but leaked light onto the glass scene's floor (decisions/
+  // 2026-12-05-probe-relocation.md).
+  EXPECT_NEAR(mean[0], walls + seen, 0.3 * walls) << "walls " << walls << ", panel " << seen;
   EXPECT_NEAR(mean[1], seen, 0.1 * walls) << "an area light's face lit the room";
   std::printf("# emissive panel: %.4f (expected %.4f), as an area light's face %.4f (%.4f)\n",
               mean[0], walls + seen, mean[1], seen);
@@ -283,32 +291,54 @@ Scene litBoxWithBlock() {
 
 // A block standing on dark ground under a white sky, its volume laid out as the milk truck's
 // was (4 x 2 x 2 probes over a box a little larger than the block): the four lower probes in
-// the middle are buried in the block. Below the lower layer, the block's front face looked up
-// only buried probes (the sky answers); just above it, one usable probe above the block with a
-// tiny barycentric weight, renormalized to all of the answer. The face showed a hard step
-// there. It must vary smoothly: the largest step between vertically adjacent pixels of the
-// face's middle column, relative to their mean (the trust ramp, probeTrust, spreads the change
-// over a quarter of the cell).
-TEST_F(ProbeVolumeGLTest, BuriedProbesLeaveNoSeam) {
+// the middle are buried in the block (relocation off: it would move them out, the next test). Below
+// the lower layer, the block's front face looked up only buried probes (the sky answers); just
+// above it, one usable probe above the block with a tiny barycentric weight, renormalized to all of
+// the answer. The face showed a hard step there. It must vary smoothly: the largest step between
+// vertically adjacent pixels of the face's middle column, relative to their mean (the trust ramp,
+// probeTrust, spreads the change over a quarter of the cell). The block on the ground of the two
+// tests below: probes at (+-2.8125 and +-0.9375, 0.117 and 1.283, +-0.583), the four lower middle
+// ones inside the block, 0.017 behind its faces.
+Scene blockOnGround() {
   Scene s;
   s.materials = {pureLambert(0.8f), pureLambert(0.1f)};
   s.meshes.push_back(boxMesh({-2.0f, 0.0f, -0.6f}, {2.0f, 1.0f, 0.6f}, 0));
   s.meshes.push_back(rectangle({-8.0f, 0.0f, 8.0f}, {16.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -16.0f},
                                {0.0f, 1.0f, 0.0f}, 1));
   finishScene(s);
-  s.probeBox = Bounds{{-3.0f, 0.0f, -1.0f}, {3.0f, 1.4f, 1.0f}};
+  s.probeBox = Bounds{{-3.0f, 0.0f, -0.7f}, {3.0f, 1.4f, 0.7f}};
   s.probeCounts = {4, 2, 2};
+  return s;
+}
+
+// The block's front face looked at from in front, after a first view has settled the volume.
+Image blockFace(bool relocation, ProbeVolumeInfo* info = nullptr) {
   RenderSettings rs = smallSettings(true);
   rs.width = rs.height = 96;
   rs.progressive.frames = 64;
-  auto r = makeRenderer(s, rs);
-  ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setEnvironment(uniformEnvironment(glm::vec3(1.0f))).ok());
+  rs.progressive.probeRelocation = relocation;
+  auto r = makeRenderer(blockOnGround(), rs);
+  EXPECT_TRUE(r);
   Image img;
-  // Render twice: the second view starts with a settled volume.
+  if (!r) return img;
+  EXPECT_TRUE(r->setEnvironment(uniformEnvironment(glm::vec3(1.0f))).ok());
   meanRadiance(*r, {0.0f, 0.5f, 1.6f}, {0.0f, 0.5f, 0.6f});
   meanRadiance(*r, {0.0f, 0.5f, 1.6f}, {0.0f, 0.5f, 0.6f}, &img);
-  // The face's rows: where the middle column sees the block (brighter than the ground).
+  if (info) *info = r->probeVolumeInfo();
+  return img;
+}
+
+// The face's middle column (the rows where it sees the block, brighter than the ground): the
+// largest step between vertically adjacent pixels relative to their mean, from two rows below
+// the top edge to a quarter of the face above the ground (whose contact shadow the occlusion
+// rays still draw with a few percent of noise at 64 frames), and the column's mean.
+struct FaceColumn {
+  size_t rows = 0;
+  double worst = 0.0, mean = 0.0;
+  int at = -1;
+};
+FaceColumn faceColumn(const Image& img) {
+  FaceColumn f;
   const int x = img.width / 2;
   auto lum = [&](int y) {
     const float* p = img.pixel(x, y);
@@ -318,24 +348,45 @@ TEST_F(ProbeVolumeGLTest, BuriedProbesLeaveNoSeam) {
   for (int y = 0; y < img.height; ++y) {
     if (lum(y) > 0.3) rows.push_back(y);
   }
-  ASSERT_GT(rows.size(), 20u) << "the face fills too few rows";
-  double worst = 0.0;
-  int at = -1;
-  // From two rows below the top edge to a quarter of the face above the ground, whose contact
-  // shadow the occlusion rays still draw with a few percent of noise at 64 frames.
+  f.rows = rows.size();
+  for (int y : rows) f.mean += lum(y) / static_cast<double>(rows.size());
   for (size_t i = 2; i + 1 < rows.size() * 3 / 4; ++i) {
     const double a = lum(rows[i]), b = lum(rows[i + 1]);
     const double step = std::abs(a - b) / (0.5 * (a + b));
-    if (step > worst) {
-      worst = step;
-      at = rows[i];
+    if (step > f.worst) {
+      f.worst = step;
+      f.at = rows[i];
     }
   }
-  std::printf("block face: %zu rows, largest step between neighbours %.1f %% (row %d)\n",
-              rows.size(), 100.0 * worst, at);
+  return f;
+}
+
+TEST_F(ProbeVolumeGLTest, BuriedProbesLeaveNoSeam) {
+  const FaceColumn f = faceColumn(blockFace(false));
+  ASSERT_GT(f.rows, 20u) << "the face fills too few rows";
+  std::printf("block face: %zu rows, largest step between neighbours %.1f %% (row %d), mean %.4f\n",
+              f.rows, 100.0 * f.worst, f.at, f.mean);
   // Measured: 5.9 % (the occlusion rays' noise near the ground; the ramp's steps 2 to 3 %); 20 %
   // before, at the lower probes' height, and 12 % where the visibility-weighted share switched.
-  EXPECT_LT(worst, 0.08);
+  EXPECT_LT(f.worst, 0.08);
+}
+
+// Relocation (progressive/probe_relocation.h) moves the four buried probes of the block above
+// out through the block's nearest faces, and no other probe; the face stays free of seams.
+TEST_F(ProbeVolumeGLTest, BuriedProbesMoveOutOfTheBlock) {
+  ProbeVolumeInfo info;
+  const FaceColumn f = faceColumn(blockFace(true, &info));
+  ASSERT_GT(f.rows, 20u) << "the face fills too few rows";
+  std::printf("block face, relocated: %d probes moved, largest step %.1f %% (row %d), mean %.4f\n",
+              info.moved, 100.0 * f.worst, f.at, f.mean);
+  EXPECT_EQ(info.probes, 16);
+  EXPECT_EQ(info.moved, 4);
+  EXPECT_LT(f.worst, 0.08);
+  // The face sees sky (1) in its upper half and ground in its lower half, the ground's radiance
+  // 0.1 x its irradiance over pi (1 where the block does not shade it): 0.8 x (0.5 + 0.5 x 0.1)
+  // = 0.44, a little less for the block's shade on the ground. Measured 0.448; with the probes
+  // left buried their share of the lookups took the unoccluded sky's answer: 0.546.
+  EXPECT_NEAR(f.mean, 0.44, 0.03);
 }
 
 // The volume is a pure function of the scene, settings and the calls made: two renderers
@@ -495,9 +546,11 @@ TEST_F(ProbeVolumeGLTest, CaptureStandInsKeepTheImage) {
     meanRadiance(*r, {0.0f, 0.3f, 0.95f}, {0.0f, -0.5f, 0.0f});  // fills the volume first
     meanRadiance(*r, {-0.6f, 0.2f, 0.9f}, {0.2f, -0.5f, -0.2f}, &image[split]);
   }
-  // Measured: max 0.0009, mean 0.00014; captures without the sphere differ by max 0.025, mean
+  // Measured: max 0.012, mean 0.00026 (a few pixels of the sphere's glossy top: a probe a
+  // hair from the sphere moves off it by how near it is, which the stand-in changes a little;
+  // max 0.0009 without relocation); captures without the sphere differ by max 0.025, mean
   // 0.0085.
-  EXPECT_TRUE(matchesImage(image[0], image[1], {0.01, 0.002}, "probe_volume_stand_ins"));
+  EXPECT_TRUE(matchesImage(image[0], image[1], {0.015, 0.002}, "probe_volume_stand_ins"));
 }
 
 }  // namespace

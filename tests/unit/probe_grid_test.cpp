@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "progressive/probe_grid.h"
+#include "progressive/probe_relocation.h"
 
 namespace penumbra::progressive {
 namespace {
@@ -17,13 +18,17 @@ Bounds box(glm::vec3 lo, glm::vec3 hi) {
   return b;
 }
 
-TEST(ProbeGridTest, CellCentresOverTheBoundsWithTheDensityAlongTheLongestSide) {
+TEST(ProbeGridTest, OuterProbesTheClearanceInsideTheBounds) {
   const ProbeGrid g = placeProbes(box({0, 0, 0}, {8, 2, 4}), 4.0f);
   EXPECT_EQ(g.counts, glm::ivec3(4, 1, 2));
   EXPECT_EQ(g.count(), 8);
-  EXPECT_FLOAT_EQ(g.spacing.x, 2.0f);
-  EXPECT_FLOAT_EQ(g.origin.x, 1.0f);  // half a cell in: no probe on the bounding walls
-  EXPECT_FLOAT_EQ(g.position(g.count() - 1).z, 3.0f);
+  // Four probes along 8: three spacings and a tenth of one at each end.
+  EXPECT_FLOAT_EQ(g.spacing.x, 8.0f / 3.2f);
+  EXPECT_FLOAT_EQ(g.origin.x, kProbeClearance * g.spacing.x);
+  EXPECT_FLOAT_EQ(g.position(3).x, 8.0f - kProbeClearance * g.spacing.x);
+  EXPECT_FLOAT_EQ(g.position(g.count() - 1).z, 4.0f - kProbeClearance * g.spacing.z);
+  // One probe along an axis sits at the centre.
+  EXPECT_FLOAT_EQ(g.origin.y, 1.0f);
   EXPECT_GE(g.columns() * g.rows(), g.count());
 }
 

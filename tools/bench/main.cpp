@@ -57,13 +57,12 @@ bool gLightCache = true;         // --no-light-cache turns it off
 bool gQuarterOcclusion = true;   // --full-occlusion turns it off
 bool gFusedAccumulation = true;  // --separate-accumulation turns it off
 
-Result<Row> run(const std::string& sceneFile, int w, int h, const std::string& frames, bool breakdown,
-                bool probeCache, bool probeVolume = true) {
+Result<Row> run(const std::string& sceneFile, int w, int h, const std::string& frames,
+                bool breakdown, bool probeCache, bool probeVolume = true) {
   JobRequest request;
   request.scenePath = sceneFile;
-  request.settings = {{"width", std::to_string(w)},
-                      {"height", std::to_string(h)},
-                      {"frames", frames}};
+  request.settings = {
+      {"width", std::to_string(w)}, {"height", std::to_string(h)}, {"frames", frames}};
   if (!probeVolume) request.settings.push_back({"probeVolume", "false"});
   for (const auto& kv : gExtraSettings) request.settings.push_back(kv);
   auto job = RenderJob::load(request);
@@ -94,14 +93,8 @@ Result<Row> run(const std::string& sceneFile, int w, int h, const std::string& f
   std::sort(previews.begin(), previews.end());
   (*r)->restart();
 
-  Row row{sceneFile.substr(sceneFile.find_last_of('/') + 1),
-          w,
-          h,
-          0,
-          0,
-          0,
-          0,
-          scene->triangleCount()};
+  Row row{
+      sceneFile.substr(sceneFile.find_last_of('/') + 1), w, h, 0, 0, 0, 0, scene->triangleCount()};
   row.previewMs = previews[kPreviews / 2];
   auto add = [&row](const FrameStats& f) {
     row.prepassMs += f.prepassMs;
@@ -193,8 +186,7 @@ int giCost(const std::vector<std::string>& scenes, const std::vector<std::string
       const double a = median(without), b = median(with);
       std::printf("| %s | %dx%d | %s | %d | %.1f | %.1f | %+.1f %% |\n",
                   scene.substr(scene.find_last_of('/') + 1).c_str(), w, h, frames.c_str(), rounds,
-                  a, b,
-                  100.0 * (b - a) / a);
+                  a, b, 100.0 * (b - a) / a);
       std::fflush(stdout);
     }
   }
@@ -271,8 +263,8 @@ int main(int argc, char** argv) {
         return 1;
       }
       std::printf("| %s | %zu | %dx%d | %d | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
-                  row->scene.c_str(), row->triangles, w, h, row->frames, row->previewMs, row->firstMs,
-                  row->perFrameMs, row->totalS, row->readBackMs);
+                  row->scene.c_str(), row->triangles, w, h, row->frames, row->previewMs,
+                  row->firstMs, row->perFrameMs, row->totalS, row->readBackMs);
       if (breakdown) {
         const double n = row->frames;
         std::printf(
@@ -287,10 +279,11 @@ int main(int argc, char** argv) {
       }
       if (row->probes.probes > 0) {
         std::printf(
-            "|   probe volume: %d probes (%dx%dx%d), %.2f MB GPU memory, %.1f captures per "
-            "probe after both runs | | | | | | | | |\n",
+            "|   probe volume: %d probes (%dx%dx%d, %d moved off the grid), %.2f MB GPU memory, "
+            "%.1f captures per probe after both runs | | | | | | | | |\n",
             row->probes.probes, row->probes.counts[0], row->probes.counts[1], row->probes.counts[2],
-            static_cast<double>(row->probes.bytes) / 1048576.0, row->probes.meanCaptures);
+            row->probes.moved, static_cast<double>(row->probes.bytes) / 1048576.0,
+            row->probes.meanCaptures);
       }
       std::fflush(stdout);
     }

@@ -43,6 +43,9 @@ export interface Settings {
   probeVolume?: boolean;
   /** Probes along the longest side of the scene's bounds (1..64; default 4). */
   probeDensity?: number;
+  /** Probes buried in geometry or at a wall's nose move within their cells at their first
+   * capture (default true). */
+  probeRelocation?: boolean;
   /** Probe captures per intermediate frame (1..64; default 2). */
   probesPerFrame?: number;
   /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */

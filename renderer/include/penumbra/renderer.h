@@ -114,6 +114,7 @@ struct ProbeVolumeInfo {
   int counts[3] = {0, 0, 0};
   int64_t bytes = 0;          // GPU memory: atlases, capture target, light maps
   double meanCaptures = 0.0;  // captures per probe so far
+  int moved = 0;              // probes relocation moved off their grid points (so far)
 };
 
 class Renderer {

@@ -62,9 +62,10 @@ struct ProgressiveSettings {
   // bounds, captured a few a frame (docs/architecture.md). Diffuse light that screen-space
   // tracing cannot resolve comes from it instead of the distant environment.
   bool probeVolume = true;
-  float probeDensity = 4.0f;  // probes along the scene's longest side (the others follow)
-  int probesPerFrame = 2;     // probe captures per intermediate frame
-  uint32_t seed = 1;          // rotates every sample sequence
+  float probeDensity = 4.0f;    // probes along the scene's longest side (the others follow)
+  bool probeRelocation = true;  // probes move out of geometry and off walls within their cells
+  int probesPerFrame = 2;       // probe captures per intermediate frame
+  uint32_t seed = 1;            // rotates every sample sequence
   bool operator==(const ProgressiveSettings&) const = default;
 };
 

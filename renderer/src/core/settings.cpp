@@ -152,6 +152,11 @@ const SettingInfo kSchema[] = {
      "probes along the longest side of the scene's bounds (the other sides get as many per unit "
      "length)",
      PN_FIELD(progressive.probeDensity, float)},
+    {"probeRelocation", "progressive", "probeRelocation", "--no-probe-relocation",
+     SettingType::Bool, 0, 1, false, false, false, true,
+     "probe relocation: a probe buried in geometry or at a wall's nose moves within its cell at "
+     "its first capture",
+     PN_BOOL(progressive.probeRelocation)},
     {"probesPerFrame", "progressive", "probesPerFrame", "--probes-per-frame", SettingType::Int, 1,
      64, false, false, false, true,
      "probe captures per intermediate frame (a quarter of the volume a frame while it fills, "

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "passes/limits.h"
+#include "progressive/probe_relocation.h"
 #include "progressive/sequences.h"
 #include "scene/light_kinds.h"
 
@@ -14,6 +15,9 @@ namespace {
 
 constexpr int kC = kProbeCaptureSize;
 constexpr int kLightMapSize = 512;
+// Relocation moves a probe at most this many times, each followed by a fresh capture: a buried
+// probe leaves through its nearest back face and may need a second step off the surface.
+constexpr int kMaxMoves = 2;
 // Cube faces: forward and up of each 90-degree view; right = forward x up (glm::lookAt's).
 const std::array<glm::vec3, 6> kForward = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
                                            glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
@@ -39,8 +43,9 @@ ProbeAtlasLayout atlasLayout(int columns, int rows) {
   l.origin[2] = glm::ivec2(0);
   l.origin[1] = glm::ivec2(columns * l.tile[2], 0);
   l.origin[0] = glm::ivec2(columns * l.tile[2], rows * l.tile[1]);
-  l.size = glm::ivec2(columns * (l.tile[2] + std::max(l.tile[0], l.tile[1])),
-                      std::max(rows * l.tile[2], rows * (l.tile[1] + l.tile[0])));
+  const int mapsHeight = std::max(rows * l.tile[2], rows * (l.tile[1] + l.tile[0]));
+  l.offsets = glm::ivec2(0, mapsHeight);
+  l.size = glm::ivec2(columns * (l.tile[2] + std::max(l.tile[0], l.tile[1])), mapsHeight + rows);
   return l;
 }
 
@@ -62,8 +67,9 @@ Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
   return v;
 }
 
-Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
+Status ProbeVolume::reset(const progressive::ProbeGrid& grid, bool relocate) {
   grid_ = grid;
+  relocate_ = relocate;
   atlas_ = {};
   if (grid_.empty()) return {};
   const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
@@ -74,6 +80,8 @@ Status ProbeVolume::reset(const progressive::ProbeGrid& grid) {
   atlasFb_.attachColor(0, atlas_);
   atlasFb_.setDrawBuffers(1);
   PN_TRY(atlasFb_.checkComplete());
+  offsets_.assign(static_cast<size_t>(grid_.count()), glm::vec3(0.0f));
+  placed_.assign(static_cast<size_t>(grid_.count()), relocate ? 0 : 1);
   clear();
   return {};
 }
@@ -87,6 +95,56 @@ void ProbeVolume::clear() {
   gl::apply({.depthTest = gl::DepthTest::Off, .depthWrite = false});
   atlasFb_.bind();
   gl::clearBufferFloat(0, 0, 0, 0, 0);
+  for (int i = 0; i < grid_.count(); ++i) {
+    if (offsets_[static_cast<size_t>(i)] != glm::vec3(0.0f)) writeOffset(i);
+  }
+}
+
+glm::vec3 ProbeVolume::probePosition(int index) const {
+  return grid_.position(index) + offsets_[static_cast<size_t>(index)];
+}
+
+int ProbeVolume::movedProbes() const {
+  return static_cast<int>(std::count_if(offsets_.begin(), offsets_.end(),
+                                        [](glm::vec3 o) { return o != glm::vec3(0.0f); }));
+}
+
+void ProbeVolume::writeOffset(int index) {
+  const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
+  const glm::vec3 o = offsets_[static_cast<size_t>(index)] / grid_.spacing;
+  atlasFb_.bind();
+  gl::setScissor(layout.offsets.x + index % grid_.columns(),
+                 layout.offsets.y + index / grid_.columns(), 1, 1);
+  gl::clearBufferFloat(0, o.x, o.y, o.z, 0.0f);
+  gl::disableScissor();
+}
+
+glm::vec3 ProbeVolume::relocation(int index) const {
+  // Alpha: the signed distance in diagonals (negative on a back face), 4 for sky, 0 where
+  // nothing was drawn.
+  const std::vector<float> texels = captureFb_.readRgbaFloat(0, 0, 0, 6 * kC, kC);
+  std::vector<progressive::ProbeSight> sights;
+  sights.reserve(static_cast<size_t>(6 * kC * kC));
+  for (int f = 0; f < 6; ++f) {
+    const glm::vec3 right =
+        glm::cross(kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
+    for (int y = 0; y < kC; ++y) {
+      for (int x = 0; x < kC; ++x) {
+        const glm::vec2 st = (glm::vec2(x, y) + 0.5f) * (2.0f / kC) - 1.0f;
+        const glm::vec3 d =
+            kForward[static_cast<size_t>(f)] + st.x * right + st.y * kUp[static_cast<size_t>(f)];
+        const float len = glm::length(d);
+        const float a = texels[static_cast<size_t>(4 * (y * 6 * kC + f * kC + x) + 3)];
+        progressive::ProbeSight s;
+        s.direction = d / len;
+        s.solidAngle = 1.0f / (len * len * len);
+        s.backface = a < 0.0f;
+        if (a != 0.0f && std::abs(a) < 3.5f) s.distance = std::abs(a) * grid_.diagonal;
+        sights.push_back(s);
+      }
+    }
+  }
+  return progressive::relocateProbe(sights, offsets_[static_cast<size_t>(index)], grid_.spacing);
 }
 
 double ProbeVolume::meanCaptures() const {
@@ -228,31 +286,18 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
     }
   }
 
-  // Six 90-degree views.
-  const float diag = grid_.diagonal;
-  const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * diag, 4.0f * diag);
-  const glm::vec3 p = grid_.position(probe);
-  std::vector<CaptureView> views;
-  for (int f = 0; f < 6; ++f) {
-    CaptureView v;
-    v.camera.view =
-        glm::lookAt(p, p + kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
-    v.camera.projection = proj;
-    v.camera.position = p;
-    v.camera.viewOrigin = glm::vec4(p, 1.0f);
-    v.x = f * kC;
-    v.size = kC;
-    views.push_back(v);
-  }
-  captureFb_.bind();
-  gl::apply({});
-  gl::setViewport(0, 0, capture_.width(), capture_.height());
-  gl::clearBufferFloat(0, 0, 0, 0, 0);
-  gl::clearDepth(1.0f);
-  // LightingPass reads the camera for its default uniforms; each view sets its own.
-  for (LightingBatch& batch : list) {
-    batch.camera = &views.front().camera;
-    PN_TRY(lighting.drawCapture(batch, views, 4.0f));
+  PN_TRY(drawFaces(lighting, list, probePosition(probe)));
+  if (!placed_[static_cast<size_t>(probe)]) {
+    // Relocation, once a probe: its first capture shows whether it is buried or at a wall's
+    // nose; a moved probe is captured again from where it now sits.
+    for (int move = 0; move < kMaxMoves; ++move) {
+      const glm::vec3 next = relocation(probe);
+      if (next == offsets_[static_cast<size_t>(probe)]) break;
+      offsets_[static_cast<size_t>(probe)] = next;
+      writeOffset(probe);
+      PN_TRY(drawFaces(lighting, list, probePosition(probe)));
+    }
+    placed_[static_cast<size_t>(probe)] = 1;
   }
 
   // Project the probe onto its tiles, blended into the running means.
@@ -283,6 +328,37 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
   }
   ++probeCaptures_[static_cast<size_t>(probe)];
   ++captures_;
+  return {};
+}
+
+Status ProbeVolume::drawFaces(LightingPass& lighting, std::vector<LightingBatch>& batches,
+                              glm::vec3 p) {
+  // Six 90-degree views.
+  const float diag = grid_.diagonal;
+  const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * diag, 4.0f * diag);
+  std::vector<CaptureView> views;
+  for (int f = 0; f < 6; ++f) {
+    CaptureView v;
+    v.camera.view =
+        glm::lookAt(p, p + kForward[static_cast<size_t>(f)], kUp[static_cast<size_t>(f)]);
+    v.camera.projection = proj;
+    v.camera.position = p;
+    v.camera.viewOrigin = glm::vec4(p, 1.0f);
+    v.x = f * kC;
+    v.size = kC;
+    views.push_back(v);
+  }
+  captureFb_.bind();
+  gl::apply({});
+  gl::setViewport(0, 0, capture_.width(), capture_.height());
+  gl::clearBufferFloat(0, 0, 0, 0, 0);
+  gl::clearDepth(1.0f);
+  // LightingPass reads the camera for its default uniforms; each view sets its own.
+  for (LightingBatch& batch : batches) {
+    batch.camera = &views.front().camera;
+    PN_TRY(lighting.drawCapture(batch, views, 4.0f));
+    batch.camera = nullptr;
+  }
   return {};
 }
 

@@ -38,11 +38,14 @@ struct CaptureLight {
 // cube maps the frame uses, the settings and the targets (for LightingPass's bindings).
 // Where the three maps sit in the atlas: for `columns` x `rows` probes, the radiance tiles at
 // the origin, the depth tiles to their right, the irradiance tiles above those (so 4096 probes
-// fit in 2048 texels, WebGL2's guaranteed size). chunks/probe_volume.glsl computes the same.
+// fit in 2048 texels, WebGL2's guaranteed size), and above all of them one texel a probe with
+// its relocation offset (in units of the grid's spacing; every texture unit is taken, so it
+// shares the atlas). chunks/probe_volume.glsl computes the same.
 struct ProbeAtlasLayout {
   glm::ivec2 size{0};
-  glm::ivec2 origin[3];  // irradiance, depth moments, radiance (PN_PROBE_MAP's order)
-  int tile[3] = {};      // tile size with its one-texel border
+  glm::ivec2 origin[3];   // irradiance, depth moments, radiance (PN_PROBE_MAP's order)
+  int tile[3] = {};       // tile size with its one-texel border
+  glm::ivec2 offsets{0};  // probe i's offset at offsets + (i % columns, i / columns)
 };
 ProbeAtlasLayout atlasLayout(int columns, int rows);
 
@@ -74,8 +77,9 @@ class ProbeVolume {
   static constexpr int kReplaced = 2;
 
   static Result<ProbeVolume> create(gl::ShaderLibrary& library);
-  // Lays out a grid and empties the volume (an empty grid turns it off).
-  Status reset(const progressive::ProbeGrid& grid);
+  // Lays out a grid and empties the volume (an empty grid turns it off); `relocate`: probes move
+  // at their first capture (progressive/probe_relocation.h), else they stay on the grid.
+  Status reset(const progressive::ProbeGrid& grid, bool relocate = true);
   // Empties the volume, same grid (the lights or the environment changed).
   void clear();
   bool active() const { return !grid_.empty(); }
@@ -86,6 +90,11 @@ class ProbeVolume {
   glm::vec2 lightPoint(uint32_t seed) const;
   // Mean captures per probe so far.
   double meanCaptures() const;
+  // Where probe `index` captures from: its grid point moved by relocation (kept across clear():
+  // the scene's geometry does not change; a probe moves at its first capture after reset()).
+  glm::vec3 probePosition(int index) const;
+  // How many probes relocation has moved from their grid points.
+  int movedProbes() const;
   // Sets the probe uniforms and binds the atlases on a program in use (none for an inactive
   // volume: the program's PN_PROBES define says whether it looks up).
   void bind(const gl::Program& program) const;
@@ -98,6 +107,12 @@ class ProbeVolume {
  private:
   Status ensureCaptureTarget();
   Status renderLightMaps(const ProbeCaptureInputs& in);
+  // Renders the six faces of a capture from `position` into the capture target.
+  Status drawFaces(LightingPass& lighting, std::vector<LightingBatch>& batches, glm::vec3 position);
+  // The offset relocation gives probe `index` from the capture target's distances.
+  glm::vec3 relocation(int index) const;
+  // Writes probe `index`'s offset into the atlas.
+  void writeOffset(int index);
 
   progressive::ProbeGrid grid_;
   gl::Program* project_ = nullptr;          // irradiance
@@ -116,6 +131,9 @@ class ProbeVolume {
   std::vector<glm::vec3> lightDirection_;  // of the direction-jittered ones' maps
   bool lightMapsValid_ = false;
   std::vector<int> probeCaptures_;
+  std::vector<glm::vec3> offsets_;  // world units, from each probe's grid point
+  std::vector<uint8_t> placed_;     // relocation done (a probe's first capture since reset())
+  bool relocate_ = true;
   uint64_t captures_ = 0;
   uint64_t lightMapRenders_ = 0;  // re-renders since the first capture (the round robin)
 };

@@ -4,7 +4,27 @@
 #include <cmath>
 #include <numeric>
 
+#include "progressive/probe_relocation.h"
+
 namespace penumbra::progressive {
+namespace {
+
+// Lays out `n` probes along one axis of `extent` from `lo`: the outer ones kProbeClearance of a
+// spacing inside the bounds (half a cell left the volume's outer probes far from the walls,
+// and their lookups near a wall saw the far side of the room with too much weight: the closed
+// box's ceiling 18.5 % over its radiosity solution), one alone at the centre. Relocation moves a
+// probe this puts inside geometry (a studio sweep's cove).
+void layAxis(float lo, float extent, int n, float& spacing, float& origin) {
+  if (n == 1) {
+    spacing = extent;
+    origin = lo + 0.5f * extent;
+    return;
+  }
+  spacing = extent / (static_cast<float>(n - 1) + 2.0f * kProbeClearance);
+  origin = lo + kProbeClearance * spacing;
+}
+
+}  // namespace
 
 glm::ivec3 ProbeGrid::cell(int index) const {
   return {index % counts.x, (index / counts.x) % counts.y, index / (counts.x * counts.y)};
@@ -37,9 +57,13 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
     int n = counts[a] > 0 ? counts[a] : static_cast<int>(std::lround(extent[a] / cellSize));
     n = std::clamp(n, 1, 64);
     g.counts[a] = n;
-    // A flat axis (a ground plane alone) keeps the cell size, so biases stay finite.
-    g.spacing[a] = extent[a] > 1e-6f * longest ? extent[a] / static_cast<float>(n) : cellSize;
-    g.origin[a] = extent[a] > 1e-6f * longest ? box.min[a] + 0.5f * g.spacing[a] : box.min[a];
+    if (extent[a] > 1e-6f * longest) {
+      layAxis(box.min[a], extent[a], n, g.spacing[a], g.origin[a]);
+    } else {
+      // A flat axis (a ground plane alone) keeps the cell size, so biases stay finite.
+      g.spacing[a] = cellSize;
+      g.origin[a] = box.min[a];
+    }
   }
   // Halve the densest axes until the atlas fits.
   while (g.count() > kMaxProbes) {
@@ -47,10 +71,8 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
     for (int k = 1; k < 3; ++k) {
       if (g.counts[k] > g.counts[a]) a = k;
     }
-    const float size = g.spacing[a] * static_cast<float>(g.counts[a]);
     g.counts[a] = std::max(1, g.counts[a] / 2);
-    g.spacing[a] = size / static_cast<float>(g.counts[a]);
-    g.origin[a] = box.min[a] + 0.5f * g.spacing[a];
+    layAxis(box.min[a], extent[a], g.counts[a], g.spacing[a], g.origin[a]);
   }
   g.diagonal = std::max(glm::length(extent), 1e-30f);
   return g;

@@ -1,6 +1,8 @@
 // ProbeGrid: where the irradiance probes of the probe volume sit and in which order they are
-// captured. A regular grid over the scene's bounds (or the scene file's override), probes at
-// cell centres so none sits on the bounding walls; its spacing follows the bounds, so a model
+// captured. A regular grid over the scene's bounds (or the scene file's override), the outer
+// probes a tenth of a spacing inside the bounds (kProbeClearance), so none sits on a bounding
+// wall and none far from it; each probe may then move within its cell (progressive/
+// probe_relocation.h, done on the GPU side). Its spacing follows the bounds, so a model
 // in millimetres and a room in metres get the same layout. Plain data and pure functions: the
 // GPU side (passes/probe_volume) only reads it.
 #pragma once

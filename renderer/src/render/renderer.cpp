@@ -144,6 +144,7 @@ ProbeVolumeInfo Renderer::probeVolumeInfo() const {
   for (int a = 0; a < 3; ++a) info.counts[a] = g.counts[a];
   info.bytes = impl_->probes->memoryBytes();
   info.meanCaptures = impl_->probes->meanCaptures();
+  info.moved = impl_->probes->movedProbes();
   return info;
 }
 const RenderSettings& Renderer::settings() const {

@@ -200,7 +200,8 @@ struct Renderer::Impl : progressive::FrameRenderer {
       pointShadows.emplace(std::move(*pp));
     }
     const bool relayout = force || s.progressive.probeVolume != previous.probeVolume ||
-                          s.progressive.probeDensity != previous.probeDensity;
+                          s.progressive.probeDensity != previous.probeDensity ||
+                          s.progressive.probeRelocation != previous.probeRelocation;
     controller.setSettings(s.progressive);
     if (sun && restartNeeded) setLights();  // the sun turns and scales with the environment
     if (relayout) {
@@ -238,7 +239,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
       grid = progressive::placeProbes(probeBox.valid() ? probeBox : scene->bounds(),
                                       settings.progressive.probeDensity, probeCounts);
     }
-    return probes->reset(grid);
+    return probes->reset(grid, settings.progressive.probeRelocation);
   }
   bool probesOn() const {
     return probes && probes->active() && settings.progressive.probeVolume && scene;
