@@ -69,7 +69,6 @@ Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
 
 Status ProbeVolume::reset(const progressive::ProbeGrid& grid, bool relocate) {
   grid_ = grid;
-  relocate_ = relocate;
   atlas_ = {};
   if (grid_.empty()) return {};
   const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());

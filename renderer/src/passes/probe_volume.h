@@ -8,7 +8,9 @@
 // probe sees (glossy reflections of the room where it sees geometry rather than sky). The three
 // share one atlas texture (one texture unit, one framebuffer), laid out by atlasLayout(). Each tile
 // keeps a running mean of its captures (constant-alpha blending in place, the weight 1/n capped so
-// the newest bounces keep coming in). The volume does not depend on the view: camera moves keep it.
+// the newest bounces keep coming in). A probe's first capture also places it: one buried in
+// geometry or at a wall's nose moves within its cell and is captured again
+// (progressive/probe_relocation.h). The volume does not depend on the view: camera moves keep it.
 #pragma once
 
 #include <cstdint>
@@ -133,7 +135,6 @@ class ProbeVolume {
   std::vector<int> probeCaptures_;
   std::vector<glm::vec3> offsets_;  // world units, from each probe's grid point
   std::vector<uint8_t> placed_;     // relocation done (a probe's first capture since reset())
-  bool relocate_ = true;
   uint64_t captures_ = 0;
   uint64_t lightMapRenders_ = 0;  // re-renders since the first capture (the round robin)
 };
