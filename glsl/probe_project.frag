@@ -107,6 +107,6 @@ void main() {
     }
   }
   // 4 pi steradians in all; buried probes see back faces in most directions.
-  fragColor = vec4(e, backfaces < 0.25 * 4.0 * 3.14159265 ? 1.0 : 0.0);
+  fragColor = vec4(e, backfaces < PN_PROBE_BURIED_SHARE * 4.0 * 3.14159265 ? 1.0 : 0.0);
 #endif
 }

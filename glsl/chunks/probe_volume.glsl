@@ -89,9 +89,9 @@ vec2 probeTile(ivec3 c) {
 }
 
 // How much the probe at grid cell c (where relocation moved it) counts for a surface point p
-// with normal n looked up from q: a soft backface weight (probes behind the surface count less) times Chebyshev's bound on
-// the probability that the probe sees q (no light through walls), small weights crushed (a
-// barely visible probe should not tint the result).
+// with normal n looked up from q: a soft backface weight (probes behind the surface count less)
+// times Chebyshev's bound on the probability that the probe sees q (no light through walls),
+// small weights crushed (a barely visible probe should not tint the result).
 float probeVisibility(ivec3 c, vec2 tile, vec3 p, vec3 q, vec3 n, vec2 atlasSize) {
   vec3 probePos = uProbeOrigin + (vec3(c) + probeOffset(tile)) * uProbeSpacing;
   float back = (dot(normalize(probePos - p), n) + 1.0) * 0.5;

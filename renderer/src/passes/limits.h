@@ -11,6 +11,7 @@
 #include "gl/program.h"
 #include "gpu/texture_units.h"
 #include "penumbra/renderer.h"  // kMaxPunctualLights, public: RenderJob warns past it
+#include "progressive/probe_relocation.h"
 #include "scene/light_kinds.h"
 
 namespace penumbra::passes {
@@ -69,6 +70,7 @@ inline gl::Defines limitDefines() {
           {"PN_PROBE_DEPTH_TEXELS", std::to_string(kProbeDepthTexels)},
           {"PN_PROBE_RADIANCE_TEXELS", std::to_string(kProbeRadianceTexels)},
           {"PN_PROBE_CAPTURE_SIZE", std::to_string(kProbeCaptureSize)},
+          {"PN_PROBE_BURIED_SHARE", std::to_string(progressive::kProbeBuriedShare)},
           {"PN_TEXTURE_SLOTS", std::to_string(kTextureSlotCount)},
           {"PN_KIND_POINT", std::to_string(kKindPoint)},
           {"PN_KIND_SPOT", std::to_string(kKindSpot)},

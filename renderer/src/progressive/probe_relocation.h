@@ -21,7 +21,8 @@ struct ProbeSight {
 };
 
 // A probe that sees back faces in more than this share of solid angle is buried (inside
-// geometry; glsl/probe_project.frag marks it unusable with the same share).
+// geometry): relocation moves it, and glsl/probe_project.frag marks it unusable while it stays
+// (PN_PROBE_BURIED_SHARE, passes/limits.h).
 inline constexpr float kProbeBuriedShare = 0.25f;
 // The room a probe keeps from what it sees, in units of its smallest spacing: the outer probes
 // of a grid sit this far inside the bounds (placeProbes), so a wall on the bounds is not too close.
