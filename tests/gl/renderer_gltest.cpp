@@ -420,5 +420,45 @@ TEST_F(RendererGLTest, OverlappingSurfacesShowTheNearestWhateverTheDrawOrder) {
   }
 }
 
+// Frame targets and shadow maps are made by the first frame, at the settings then in force: a
+// viewer sets its canvas's size, then a scene's settings, before it draws, and each size set
+// on the way must not be allocated (a browser zero-fills every allocation).
+TEST_F(RendererGLTest, SettingsBeforeTheFirstFrameAllocateOnlyTheLastSize) {
+  Loaded l = loadCornell(32, 4);
+  ASSERT_FALSE(l.scene.meshes.empty());
+  const int64_t before = Renderer::gpuMemoryBytes();
+  auto r = Renderer::create();
+  ASSERT_TRUE(r.ok()) << r.message();
+  Renderer& renderer = **r;
+  // 1024x1024 with 2048 shadow maps: more than 100 MB of targets if they were made now.
+  RenderSettings big = l.settings;
+  big.width = big.height = 1024;
+  big.progressive.shadowMapSize = 2048;
+  ASSERT_TRUE(renderer.setSettings(big).ok());
+  ASSERT_TRUE(renderer.setScene(l.scene).ok());
+  ASSERT_TRUE(renderer.setEnvironment(l.env).ok());
+  renderer.setCamera(l.camera);
+  const int64_t created = Renderer::gpuMemoryBytes() - before;
+  // The scene, the environment, lookup tables and the probe atlas, not the 1024x1024 targets
+  // (16 MB a float target).
+  EXPECT_LT(created, int64_t{16} << 20) << created;
+  ASSERT_TRUE(renderer.setSettings(l.settings).ok());  // 32x32, 256 shadow maps
+  EXPECT_EQ(Renderer::gpuMemoryBytes() - before, created);
+  ASSERT_TRUE(renderer.step().ok());
+  const int64_t drawn = Renderer::gpuMemoryBytes() - before;
+  // The 32x32 targets and 256-pixel shadow maps (under 8 MB with the probe volume's maps).
+  EXPECT_GT(drawn, created);
+  EXPECT_LT(drawn, created + (int64_t{8} << 20)) << drawn - created;
+  // A resize drops the targets at once and makes the new ones when the next frame draws.
+  RenderSettings wide = l.settings;
+  wide.width = 64;
+  ASSERT_TRUE(renderer.setSettings(wide).ok());
+  EXPECT_LT(Renderer::gpuMemoryBytes() - before, drawn);
+  ASSERT_TRUE(renderer.step().ok());
+  EXPECT_GT(Renderer::gpuMemoryBytes() - before, drawn);
+  r->reset();
+  EXPECT_EQ(Renderer::gpuMemoryBytes(), before);
+}
+
 }  // namespace
 }  // namespace penumbra::test

@@ -47,6 +47,7 @@ struct Row {
   double probeMs = 0;
   int probeCaptures = 0;
   ProbeVolumeInfo probes;
+  int64_t gpuBytes = 0;  // Renderer::gpuMemoryBytes() after the last frame
   int shadowPasses = 0;
   int lightingPasses = 0;
 };
@@ -147,6 +148,7 @@ Result<Row> run(const std::string& sceneFile, int w, int h, const std::string& f
   row.totalS = ms(t0, t2) / 1000.0;
   row.readBackMs = ms(t2, t3);
   row.probes = (*r)->probeVolumeInfo();
+  row.gpuBytes = Renderer::gpuMemoryBytes();
   return row;
 }
 
@@ -277,6 +279,9 @@ int main(int argc, char** argv) {
             row->probeCaptures, row->firstLightingMs, row->firstAccumulateMs, row->firstDisplayMs,
             row->toneMapMs);
       }
+      std::printf(
+          "|   GPU memory: %.1f MB (textures, renderbuffers and buffers) | | | | | | | | |\n",
+          static_cast<double>(row->gpuBytes) / 1048576.0);
       if (row->probes.probes > 0) {
         std::printf(
             "|   probe volume: %d probes (%dx%dx%d, %d moved off the grid), %.2f MB GPU memory, "

@@ -215,6 +215,9 @@ export interface ViewerState {
   /** An animation frame is scheduled: false once converged with nothing new to show (the loop
    *  sleeps until a change), and while paused. */
   looping: boolean;
+  /** GPU memory held by the renderer's textures, renderbuffers and buffers, from their sizes
+   *  and formats (what the browser keeps beside them is not counted); 0 while lost. */
+  gpuMemoryBytes: number;
 }
 
 export interface BenchmarkResult {

@@ -26,7 +26,7 @@ export function bindWasmApi(mod) {
     pv_last_part: w('pv_last_part', n, []), pv_last_parts: w('pv_last_parts', n, []),
     pv_sync: w('pv_sync', null, []), pv_present: w('pv_present', s, [n, n]),
     pv_read: w('pv_read', s, [n]), pv_frames_done: w('pv_frames_done', n, []), pv_total_frames: w('pv_total_frames', n, []),
-    pv_converged: w('pv_converged', n, []), pv_restart: w('pv_restart', null, []),
+    pv_converged: w('pv_converged', n, []), pv_gpu_memory: w('pv_gpu_memory', n, []), pv_restart: w('pv_restart', null, []),
     pv_preview: w('pv_preview', s, []),
     pv_context_lost: w('pv_context_lost', null, []),
     pv_context_restored: w('pv_context_restored', s, []),

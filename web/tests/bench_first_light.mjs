@@ -24,6 +24,14 @@ const arg = (name, def) => {
 };
 const runs = Number(arg('runs', 2));
 const timeoutMs = Number(arg('timeout', 180)) * 1000;
+// Seconds the freshly launched browser is left idle before navigating. Right after launch
+// Chromium's GPU process is still starting SwiftShader: the first WebGL context then takes
+// about 1.1 s instead of 0.13 s (measured), which a person opening the page in a running
+// browser does not pay. --settle 0 measures that cold start too.
+const settleMs = Number(arg('settle', 3)) * 1000;
+// Which measurements: default, square or both; --query adds URL parameters to both pages.
+const only = arg('only', 'both');
+const extraQuery = arg('query', '');
 
 // Samples the canvas's mean brightness at every animation frame from the page's start, and
 // records the viewer's progress and convergence, all against performance.now() (0 at
@@ -62,6 +70,7 @@ const PROBE = () => {
 async function measure(server, query, device) {
   return withPage({ ...device, launchMs: 30_000 }, async (page) => {
     await page.addInitScript(PROBE);
+    if (settleMs > 0) await new Promise((r) => setTimeout(r, settleMs));
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html${query}`,
                     { timeout: 30_000 });
     await page.waitForFunction(() => window.__first?.converged !== null ||
@@ -121,20 +130,20 @@ try {
   readFileSync(join(dist, 'index.html'));
   const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
                   hasTouch: true };
-  console.log('Default page (Cornell box, own lamp only), phone 390x844 DPR 3, SwiftShader:');
-  for (let i = 0; i < runs; i++) {
-    const log = await measure(server, '', phone);
+  if (only !== 'square') console.log('Default page (Cornell box, own lamp only), phone 390x844 DPR 3, SwiftShader:');
+  for (let i = 0; i < runs && only !== 'square'; i++) {
+    const log = await measure(server, extraQuery ? `?${extraQuery}` : '', phone);
     const final = log.samples.at(-1)?.mean ?? 0;
     console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
                 `first frame ${s(log.presents[0]?.t)}, 10 % of converged ${s(firstAt(log.samples, 0.1 * final))}, ` +
                 `50 % ${s(firstAt(log.samples, 0.5 * final))}, ` +
                 `converged ${s(log.converged)} (${log.frames} frames)`);
   }
-  console.log('Textured 2-triangle square under studio_sky.hdr, frames auto, 512x512:');
+  if (only !== 'default') console.log('Textured 2-triangle square under studio_sky.hdr, frames auto, 512x512:');
   const square = { viewport: { width: 512, height: 512 }, deviceScaleFactor: 1 };
-  for (let i = 0; i < runs; i++) {
+  for (let i = 0; i < runs && only !== 'default'; i++) {
     const log = await measure(server, '?scene=bench/square.gltf&env=assets/env/studio_sky.hdr' +
-                                      '&frames=auto&panel=0', square);
+                                      `&frames=auto&panel=0${extraQuery ? `&${extraQuery}` : ''}`, square);
     console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
                 `first frame ${s(log.presents[0]?.t)}, converged ${s(log.converged)} ` +
                 `(${log.frames} frames)`);

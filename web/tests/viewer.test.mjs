@@ -138,6 +138,11 @@ test('loads the default scene (Cornell box) and reaches m frames', { timeout: TE
     const s = await waitConverged(page, 0);
     assert.equal(s.canvasWidth, SIZE);
     assert.equal(s.renderWidth, SIZE);
+    // The renderer's GPU memory: at least its two float accumulation targets at this size, and
+    // short of what a leak or the 1280x720 default's targets kept beside them would add (26.6 MB
+    // measured: shadow maps, the probe volume and the environment are most of it).
+    assert.ok(s.gpuMemoryBytes > 2 * SIZE * SIZE * 8 && s.gpuMemoryBytes < 48 * 2 ** 20,
+              `GPU memory ${s.gpuMemoryBytes} B`);
     const info = await page.evaluate(() => window.penumbraPage.viewer.info.scene);
     assert.equal(info.name, 'cornell_box.json');
     assert.equal(info.lights, 1);

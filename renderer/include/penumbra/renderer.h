@@ -190,6 +190,11 @@ class Renderer {
   // (JobRequest::maxTextureSize).
   int maxTextureSize() const;
   const RenderSettings& settings() const;
+  // The GPU memory held by the textures, renderbuffers and buffers of every renderer in this
+  // process, from their sizes and formats (mip levels and layers included; what a driver pads
+  // is not). Frame targets and shadow maps are made by the first frame that needs them, so a
+  // renderer whose settings changed several times before it drew holds only the last size.
+  static int64_t gpuMemoryBytes();
 
  private:
   Renderer();

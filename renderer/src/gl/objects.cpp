@@ -79,6 +79,7 @@ Result<Buffer> Buffer::create(BufferKind kind, std::span<const uint8_t> data) {
                data.empty() ? nullptr : data.data(), GL_STATIC_DRAW);
   if (kind == BufferKind::Index) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   PN_TRY(checkError("allocating a " + std::to_string(data.size()) + "-byte buffer"));
+  b.memory_ = MemoryCharge(static_cast<int64_t>(data.size()));
   return b;
 }
 
@@ -213,6 +214,7 @@ Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat for
   glRenderbufferStorage(GL_RENDERBUFFER, internal, width, height);
   PN_TRY(checkError("allocating a " + std::to_string(width) + "x" + std::to_string(height) +
                     " renderbuffer"));
+  r.memory_ = MemoryCharge(storageBytes(width, height, 1, bytesPerPixel(format)));
   return r;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/handle.h"
+#include "gl/memory.h"
 #include "gl/texture.h"
 #include "penumbra/error.h"
 
@@ -34,6 +35,7 @@ class Buffer {
 
  private:
   Handle<deleteBuffer> handle_;
+  MemoryCharge memory_;
   BufferKind kind_ = BufferKind::Vertex;
   size_t size_ = 0;
 };
@@ -79,6 +81,7 @@ class Renderbuffer {
 
  private:
   Handle<deleteRenderbuffer> handle_;
+  MemoryCharge memory_;
   PixelFormat format_ = PixelFormat::Depth24;
 };
 

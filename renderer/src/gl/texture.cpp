@@ -174,6 +174,8 @@ Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
   Texture2D t = allocate(desc, info(desc.format).internal);
   PN_TRY(checkError(std::string("allocating a ") + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + " " + formatName(desc.format) + " texture"));
+  t.memory_ =
+      MemoryCharge(storageBytes(desc.width, desc.height, desc.levels, bytesPerPixel(desc.format)));
   return t;
 }
 
@@ -199,6 +201,9 @@ Result<Texture2D> Texture2D::createCompressed(int width, int height, uint32_t in
   std::snprintf(hex, sizeof hex, "%X", internalFormat);
   PN_TRY(checkError("uploading a " + std::to_string(width) + "x" + std::to_string(height) +
                     " compressed texture (format 0x" + hex + ")"));
+  int64_t bytes = 0;
+  for (const auto& blocks : levels) bytes += static_cast<int64_t>(blocks.size());
+  t.memory_ = MemoryCharge(bytes);
   return t;
 }
 
@@ -255,6 +260,8 @@ Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layer
   PN_TRY(checkError("allocating a " + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + "x" + std::to_string(layers) + " " +
                     formatName(desc.format) + " texture array"));
+  t.memory_ = MemoryCharge(
+      storageBytes(desc.width, desc.height, desc.levels, bytesPerPixel(desc.format), layers));
   return t;
 }
 
@@ -291,6 +298,8 @@ Result<TextureCube> TextureCube::create(const TextureDesc& desc) {
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
   applySampler(GL_TEXTURE_CUBE_MAP, desc.sampler);
   PN_TRY(checkError("allocating a " + std::to_string(desc.width) + " px cube map"));
+  t.memory_ = MemoryCharge(
+      storageBytes(desc.width, desc.width, desc.levels, bytesPerPixel(desc.format), 6));
   return t;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gl/handle.h"
+#include "gl/memory.h"
 #include "penumbra/error.h"
 
 namespace penumbra::gl {
@@ -83,6 +84,7 @@ class Texture2D {
   static Texture2D allocate(const TextureDesc& desc, GLenum internalFormat);
 
   Handle<deleteTexture> handle_;
+  MemoryCharge memory_;
   TextureDesc desc_;
 };
 
@@ -107,6 +109,7 @@ class Texture2DArray {
 
  private:
   Handle<deleteTexture> handle_;
+  MemoryCharge memory_;
   TextureDesc desc_;
   int layers_ = 0;
 };
@@ -131,6 +134,7 @@ class TextureCube {
 
  private:
   Handle<deleteTexture> handle_;
+  MemoryCharge memory_;
   TextureDesc desc_;
 };
 

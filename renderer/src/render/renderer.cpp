@@ -1,5 +1,6 @@
 // The renderer: prepares GL state for a scene, environment, camera and settings, and draws
 // frame n of the progressive controller's plan (FrameRenderer). The passes do the drawing.
+#include "gl/memory.h"
 #include "render/renderer_impl.h"
 
 namespace penumbra {
@@ -149,6 +150,9 @@ ProbeVolumeInfo Renderer::probeVolumeInfo() const {
 }
 const RenderSettings& Renderer::settings() const {
   return impl_->settings;
+}
+int64_t Renderer::gpuMemoryBytes() {
+  return gl::liveBytes();
 }
 int Renderer::maxTextureSize() const {
   return impl_->caps.maxTextureSize;

@@ -166,10 +166,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
 
   Status applySettings(const RenderSettings& s, bool force) {
     PN_TRY(validate(s));
-    const bool resize =
-        force || !targets || s.width != settings.width || s.height != settings.height;
+    const bool resize = force || s.width != settings.width || s.height != settings.height;
     const bool shadowResize =
-        force || !shadows || s.progressive.shadowMapSize != settings.progressive.shadowMapSize;
+        force || s.progressive.shadowMapSize != settings.progressive.shadowMapSize;
     const bool restartNeeded = force || s.environmentIntensity != settings.environmentIntensity ||
                                s.environmentRotation != settings.environmentRotation ||
                                s.showBackground != settings.showBackground ||
@@ -177,27 +176,13 @@ struct Renderer::Impl : progressive::FrameRenderer {
     const ProgressiveSettings previous = settings.progressive;
     settings = s;
     if (resize) {
-      targets.reset();
-      auto t = passes::RenderTargets::create(
-          s.width, s.height, caps.accumulationFormat,
-          // Half floats hold the prepass (view normal, linear depth) well enough for the
-          // occlusion march's 0.2 % depth tolerance, at half the bandwidth of its random reads.
-          caps.colorBufferHalfFloat ? gl::PixelFormat::RGBA16F : caps.accumulationFormat);
-      if (!t) return t.error();
-      targets.emplace(std::move(*t));
+      targets.reset();  // made again by the next frame (ensureFrameResources)
       caches.prepassValid = false;
       caches.probeCacheFrame = -1;
     }
     if (shadowResize) {
       shadows.reset();
-      auto sp = passes::ShadowPass::create(library, s.progressive.shadowMapSize);
-      if (!sp) return sp.error();
-      shadows.emplace(std::move(*sp));
-      // Cube maps: six faces each, so at most 1024 pixels a face (24 MB a light at 1024).
-      auto pp =
-          passes::PointShadowPass::create(library, std::min(s.progressive.shadowMapSize, 1024));
-      if (!pp) return pp.error();
-      pointShadows.emplace(std::move(*pp));
+      pointShadows.reset();
     }
     const bool relayout = force || s.progressive.probeVolume != previous.probeVolume ||
                           s.progressive.probeDensity != previous.probeDensity ||
@@ -211,6 +196,36 @@ struct Renderer::Impl : progressive::FrameRenderer {
     }
     updateFirstLight();
     if (resize || restartNeeded) controller.invalidate();
+    return {};
+  }
+
+  // The frame targets and the shadow maps are made when something first draws or reads them,
+  // not when settings change: a viewer sets its canvas's size and then a scene's settings before
+  // its first frame, and a browser zero-fills every allocation (WebGL's initialised textures,
+  // page by page on a CPU device), so the defaults' 68 MB made and dropped cost its first
+  // picture time. An allocation that fails is reported by the call that needed it.
+  Status ensureFrameResources() {
+    if (!targets) {
+      auto t = passes::RenderTargets::create(
+          settings.width, settings.height, caps.accumulationFormat,
+          // Half floats hold the prepass (view normal, linear depth) well enough for the
+          // occlusion march's 0.2 % depth tolerance, at half the bandwidth of its random reads.
+          caps.colorBufferHalfFloat ? gl::PixelFormat::RGBA16F : caps.accumulationFormat);
+      if (!t) return t.error();
+      targets.emplace(std::move(*t));
+    }
+    if (!shadows) {
+      auto sp = passes::ShadowPass::create(library, settings.progressive.shadowMapSize);
+      if (!sp) return sp.error();
+      shadows.emplace(std::move(*sp));
+    }
+    if (!pointShadows) {
+      // Cube maps: six faces each, so at most 1024 pixels a face (24 MB a light at 1024).
+      auto pp = passes::PointShadowPass::create(library,
+                                                std::min(settings.progressive.shadowMapSize, 1024));
+      if (!pp) return pp.error();
+      pointShadows.emplace(std::move(*pp));
+    }
     return {};
   }
 
@@ -337,7 +352,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   // Frame 1 of the plan as a reduced preview (Renderer::preview); the caller restarted the
   // controller.
   Status renderPreview() {
-    if (!targets) return makeError("preview: the renderer has no targets");
+    PN_TRY(ensureFrameResources());
     beginFrame(controller.plan().front(), 1, true);
     auto done = runPart();
     if (!done) return done.error();
@@ -345,6 +360,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   Status renderFrame(const FramePlan& plan) override {
+    PN_TRY(ensureFrameResources());
     beginFrame(plan, 1);
     auto done = runPart();
     if (!done) return done.error();
@@ -352,7 +368,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
   }
 
   Result<bool> renderFramePart(const FramePlan& plan, bool begin) override {
-    if (begin || pending.next >= pending.units.size()) beginFrame(plan, frameTiles);
+    if (begin || pending.next >= pending.units.size()) {
+      PN_TRY(ensureFrameResources());
+      beginFrame(plan, frameTiles);
+    }
     return runPart();
   }
 };

@@ -29,6 +29,7 @@ Image flipRows(std::vector<float> data, int w, int h, int channels) {
 
 Result<Image> Renderer::readRadiance() {
   gl::StateGuard guard(impl_->options.preserveHostState);
+  PN_TRY(impl_->ensureFrameResources());
   auto& t = *impl_->targets;
   auto data = t.accumulation[static_cast<size_t>(t.current)].framebuffer.readRgbaFloat(
       0, 0, 0, t.width, t.height);
@@ -43,6 +44,7 @@ Result<Image> Renderer::readRadiance() {
 
 Status Renderer::toneMap() {
   gl::StateGuard guard(impl_->options.preserveHostState);
+  PN_TRY(impl_->ensureFrameResources());
   auto& t = *impl_->targets;
   auto radiance = impl_->displayedRadiance();
   if (!radiance) return radiance.error();
@@ -58,6 +60,7 @@ void Renderer::finish() {
 
 Result<Image> Renderer::readDisplay() {
   gl::StateGuard guard(impl_->options.preserveHostState);
+  PN_TRY(impl_->ensureFrameResources());
   PN_TRY(toneMap());
   auto& t = *impl_->targets;
   auto bytes = t.display.framebuffer.readRgba8(0, 0, 0, t.width, t.height);
@@ -87,6 +90,7 @@ Status Renderer::present(const PresentTarget& target) {
                      std::to_string(target.height) + " is empty");
   }
   gl::StateGuard guard(impl_->options.preserveHostState);
+  PN_TRY(impl_->ensureFrameResources());
   auto radiance = impl_->displayedRadiance();
   if (!radiance) return radiance.error();
   gl::Framebuffer::bindExternal(target.framebuffer);
