@@ -148,6 +148,36 @@ TEST_F(FoundationGLTest, HalfFloatTargetAccumulatesWithinHalfPrecision) {
   for (size_t i = 0; i < full.size(); ++i) EXPECT_NEAR(half[i], full[i], 0.02f);
 }
 
+// An allocation's failure is reported at once natively; with deferred checks (the WebGL
+// build's default: no glGetError round trip per allocation) by the next checkError, naming the
+// first allocation since the last check.
+TEST_F(FoundationGLTest, AllocationFailuresAreReportedAtOnceOrByTheNextCheck) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
+  ASSERT_GT(maxSize, 0);
+  const int tooWide = maxSize + 1;
+  gl::clearErrors();
+  auto now = gl::Renderbuffer::create(tooWide, 4, gl::PixelFormat::RGBA8);
+  ASSERT_FALSE(now.ok());
+  EXPECT_NE(now.message().find("x4 renderbuffer failed: GL_INVALID_VALUE"), std::string::npos)
+      << now.message();
+
+  gl::setDeferredAllocationChecks(true);
+  auto fine = gl::Renderbuffer::create(4, 4, gl::PixelFormat::RGBA8);
+  EXPECT_TRUE(fine.ok());
+  EXPECT_TRUE(gl::checkError("frame 1").ok());  // nothing failed: nothing is reported
+  auto later = gl::Renderbuffer::create(tooWide, 4, gl::PixelFormat::RGBA8);
+  EXPECT_TRUE(later.ok());  // not checked yet
+  auto after = gl::Renderbuffer::create(8, 8, gl::PixelFormat::RGBA8);
+  const Status frame = gl::checkError("frame 2");
+  gl::setDeferredAllocationChecks(false);
+  ASSERT_FALSE(frame.ok());
+  const std::string expected = "frame 2 (after allocating a " + std::to_string(tooWide) +
+                               "x4 renderbuffer, or a later call) failed: GL_INVALID_VALUE";
+  EXPECT_EQ(frame.message(), expected);
+  EXPECT_TRUE(gl::checkError("frame 3").ok());
+}
+
 TEST_F(FoundationGLTest, IncompleteFramebufferIsAReadableError) {
   gl::Framebuffer fb = gl::Framebuffer::create();
   auto status = fb.checkComplete();

@@ -1,8 +1,16 @@
 // Benchmark (prints only; not part of tools/test-web): the first seconds in headless Chromium on
 // SwiftShader (a CPU "GPU"), issue #36's browser figures.
 //
-//   node web/tests/bench_first_light.mjs [--runs 2] [--timeout 180]
+//   node web/tests/bench_first_light.mjs [--runs 2] [--timeout 180] [--start both]
+//       [--only both] [--query K=V&...]
 // (Serves web/dist, made by tools/build-web; PENUMBRA_WEB_DIST points at another build.)
+//
+// --start: "fresh", the page opened the moment the browser has launched; "running", in a
+// browser that has shown an ordinary page (text, form controls, rounded boxes; another origin,
+// no WebGL) and then sat idle for --settle seconds, as a person's browser has; "both" (the
+// default) prints each. A fresh browser is still starting: its GPU process sets up SwiftShader
+// and compiles the compositor's own shaders for the first page it paints, about 0.5 s of the
+// figures that a running browser has paid long before.
 //
 // 1. The default page (the Cornell box, lit only by its own lamp) on a phone viewport
 //    (390x844, deviceScaleFactor 3, touch): from navigation, the first presented frame, the
@@ -24,10 +32,7 @@ const arg = (name, def) => {
 };
 const runs = Number(arg('runs', 2));
 const timeoutMs = Number(arg('timeout', 180)) * 1000;
-// Seconds the freshly launched browser is left idle before navigating. Right after launch
-// Chromium's GPU process is still starting SwiftShader: the first WebGL context then takes
-// about 1.1 s instead of 0.13 s (measured), which a person opening the page in a running
-// browser does not pay. --settle 0 measures that cold start too.
+const starts = arg('start', 'both') === 'both' ? ['fresh', 'running'] : [arg('start', 'both')];
 const settleMs = Number(arg('settle', 3)) * 1000;
 // Which measurements: default, square or both; --query adds URL parameters to both pages.
 const only = arg('only', 'both');
@@ -67,10 +72,25 @@ const PROBE = () => {
   requestAnimationFrame(tick);
 };
 
-async function measure(server, query, device) {
+// An ordinary page of another origin, for a running browser to have shown before.
+const ORDINARY = `<!doctype html><html><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1"><title>An ordinary page</title>
+<style>body{font:15px/1.4 system-ui,sans-serif;margin:16px;background:#fafafa;color:#222}
+.card{background:#fff;border:1px solid #ddd;border-radius:8px;padding:12px;margin:12px 0;
+box-shadow:0 1px 3px rgba(0,0,0,.15)}button{padding:6px 12px;border-radius:6px}</style></head>
+<body><h1>News</h1><div class="card"><h2>A headline</h2><p>Some text, with <a href="#">a
+link</a> and <b>bold</b> words. Lorem ipsum dolor sit amet, consectetur adipiscing elit.</p>
+<button>Read more</button></div><div class="card"><label>Search <input type="text"></label>
+<select><option>one</option></select> <input type="checkbox"> <input type="range"></div>
+<div class="card" style="opacity:.8"><p>More text. Ut enim ad minim veniam.</p></div></body></html>`;
+
+async function measure(server, query, device, start, ordinaryUrl) {
   return withPage({ ...device, launchMs: 30_000 }, async (page) => {
     await page.addInitScript(PROBE);
-    if (settleMs > 0) await new Promise((r) => setTimeout(r, settleMs));
+    if (start === 'running') {
+      await page.goto(ordinaryUrl, { timeout: 30_000 });
+      await new Promise((r) => setTimeout(r, settleMs));
+    }
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html${query}`,
                     { timeout: 30_000 });
     await page.waitForFunction(() => window.__first?.converged !== null ||
@@ -126,28 +146,41 @@ const firstAt = (samples, level) => samples.find((x) => x.mean >= level)?.t ?? n
 
 const tmp = mkdtempSync(join(tmpdir(), 'penumbra-bench-'));
 const server = await serve(dist, texturedSquare(tmp));
+writeFileSync(join(tmp, 'ordinary.html'), ORDINARY);
+const other = await serve(tmp, {});
+const ordinaryUrl = `http://localhost:${other.address().port}/ordinary.html`;
 try {
   readFileSync(join(dist, 'index.html'));
   const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
                   hasTouch: true };
-  if (only !== 'square') console.log('Default page (Cornell box, own lamp only), phone 390x844 DPR 3, SwiftShader:');
-  for (let i = 0; i < runs && only !== 'square'; i++) {
-    const log = await measure(server, extraQuery ? `?${extraQuery}` : '', phone);
-    const final = log.samples.at(-1)?.mean ?? 0;
-    console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
-                `first frame ${s(log.presents[0]?.t)}, 10 % of converged ${s(firstAt(log.samples, 0.1 * final))}, ` +
-                `50 % ${s(firstAt(log.samples, 0.5 * final))}, ` +
-                `converged ${s(log.converged)} (${log.frames} frames)`);
+  for (const start of only === 'square' ? [] : starts) {
+    console.log('Default page (Cornell box, own lamp only), phone 390x844 DPR 3, SwiftShader, ' +
+                `${start} browser:`);
+    for (let i = 0; i < runs; i++) {
+      const log = await measure(server, extraQuery ? `?${extraQuery}` : '', phone, start,
+                                ordinaryUrl);
+      const final = log.samples.at(-1)?.mean ?? 0;
+      console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
+                  `first frame ${s(log.presents[0]?.t)}, ` +
+                  `10 % of converged ${s(firstAt(log.samples, 0.1 * final))}, ` +
+                  `50 % ${s(firstAt(log.samples, 0.5 * final))}, ` +
+                  `converged ${s(log.converged)} (${log.frames} frames)`);
+    }
   }
-  if (only !== 'default') console.log('Textured 2-triangle square under studio_sky.hdr, frames auto, 512x512:');
   const square = { viewport: { width: 512, height: 512 }, deviceScaleFactor: 1 };
-  for (let i = 0; i < runs && only !== 'default'; i++) {
-    const log = await measure(server, '?scene=bench/square.gltf&env=assets/env/studio_sky.hdr' +
-                                      `&frames=auto&panel=0${extraQuery ? `&${extraQuery}` : ''}`, square);
-    console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
-                `first frame ${s(log.presents[0]?.t)}, converged ${s(log.converged)} ` +
-                `(${log.frames} frames)`);
+  for (const start of only === 'default' ? [] : starts) {
+    console.log('Textured 2-triangle square under studio_sky.hdr, frames auto, 512x512, ' +
+                `${start} browser:`);
+    for (let i = 0; i < runs; i++) {
+      const log = await measure(server, '?scene=bench/square.gltf&env=assets/env/studio_sky.hdr' +
+                                        `&frames=auto&panel=0${extraQuery ? `&${extraQuery}` : ''}`,
+                                square, start, ordinaryUrl);
+      console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
+                  `first frame ${s(log.presents[0]?.t)}, converged ${s(log.converged)} ` +
+                  `(${log.frames} frames)`);
+    }
   }
 } finally {
   closeServer(server);
+  closeServer(other);
 }

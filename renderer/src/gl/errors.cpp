@@ -1,5 +1,7 @@
 #include "gl/errors.h"
 
+#include <utility>
+
 namespace penumbra::gl {
 
 const char* errorName(GLenum error) {
@@ -48,7 +50,24 @@ const char* framebufferStatusName(GLenum status) {
   }
 }
 
+namespace {
+
+#ifdef __EMSCRIPTEN__
+bool gDeferAllocationChecks = true;
+#else
+bool gDeferAllocationChecks = false;
+#endif
+// The first allocation since the last checkError() (deferred checks only).
+std::string& pendingAllocation() {
+  static std::string what;
+  return what;
+}
+
+}  // namespace
+
 Status checkError(const std::string& what) {
+  std::string allocation;
+  if (gDeferAllocationChecks) allocation = std::exchange(pendingAllocation(), {});
   GLenum first = GL_NO_ERROR;
   for (int i = 0; i < 16; ++i) {
     GLenum e = glGetError();
@@ -56,12 +75,29 @@ Status checkError(const std::string& what) {
     if (first == GL_NO_ERROR) first = e;
   }
   if (first == GL_NO_ERROR) return {};
+  const std::string where =
+      allocation.empty() ? what : what + " (after " + allocation + ", or a later call)";
   if (first == GL_OUT_OF_MEMORY) {
-    return makeError(what +
+    return makeError(where +
                      ": the GPU is out of memory (GL_OUT_OF_MEMORY); lower the resolution "
                      "or the shadow-map size");
   }
-  return makeError(what + " failed: " + errorName(first));
+  return makeError(where + " failed: " + errorName(first));
+}
+
+void setDeferredAllocationChecks(bool deferred) {
+  gDeferAllocationChecks = deferred;
+  pendingAllocation().clear();
+}
+
+void beginAllocation() {
+  if (!gDeferAllocationChecks) clearErrors();
+}
+
+Status checkAllocation(const std::string& what) {
+  if (!gDeferAllocationChecks) return checkError(what);
+  if (pendingAllocation().empty()) pendingAllocation() = what;
+  return {};
 }
 
 void clearErrors() {

@@ -16,4 +16,15 @@ Status checkError(const std::string& what);
 // Drains pending errors without reporting (after an operation whose failure is handled).
 void clearErrors();
 
+// An allocation's checks (textures, buffers, renderbuffers). Natively: pending errors are
+// drained before it and a failure is reported at once. In WebGL every glGetError is a round
+// trip that holds the page until the GPU process has run everything queued (0.6 s of the
+// default page's first 3 s on SwiftShader, with the GPU process idle for part of that time),
+// so there the allocation is only remembered: the next checkError() (every frame does one)
+// reports a failure with the first allocation since the last check.
+void beginAllocation();
+Status checkAllocation(const std::string& what);
+// Deferred checks are the WebGL build's default; tests turn them on natively.
+void setDeferredAllocationChecks(bool deferred);
+
 }  // namespace penumbra::gl

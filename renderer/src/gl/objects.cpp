@@ -66,7 +66,7 @@ GLenum glPrimitive(Primitive p) {
 // --- Buffer -------------------------------------------------------------------------------
 
 Result<Buffer> Buffer::create(BufferKind kind, std::span<const uint8_t> data) {
-  clearErrors();
+  beginAllocation();
   GLuint id = 0;
   glGenBuffers(1, &id);
   Buffer b;
@@ -78,7 +78,7 @@ Result<Buffer> Buffer::create(BufferKind kind, std::span<const uint8_t> data) {
   glBufferData(bufferTarget(kind), static_cast<GLsizeiptr>(data.size()),
                data.empty() ? nullptr : data.data(), GL_STATIC_DRAW);
   if (kind == BufferKind::Index) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-  PN_TRY(checkError("allocating a " + std::to_string(data.size()) + "-byte buffer"));
+  PN_TRY(checkAllocation("allocating a " + std::to_string(data.size()) + "-byte buffer"));
   b.memory_ = MemoryCharge(static_cast<int64_t>(data.size()));
   return b;
 }
@@ -180,7 +180,7 @@ void VertexArray::drawInstanced(Primitive mode, int count, int instances,
 // --- Renderbuffer -------------------------------------------------------------------------
 
 Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat format) {
-  clearErrors();
+  beginAllocation();
   GLuint id = 0;
   glGenRenderbuffers(1, &id);
   Renderbuffer r;
@@ -212,7 +212,7 @@ Result<Renderbuffer> Renderbuffer::create(int width, int height, PixelFormat for
   }
   glBindRenderbuffer(GL_RENDERBUFFER, id);
   glRenderbufferStorage(GL_RENDERBUFFER, internal, width, height);
-  PN_TRY(checkError("allocating a " + std::to_string(width) + "x" + std::to_string(height) +
+  PN_TRY(checkAllocation("allocating a " + std::to_string(width) + "x" + std::to_string(height) +
                     " renderbuffer"));
   r.memory_ = MemoryCharge(storageBytes(width, height, 1, bytesPerPixel(format)));
   return r;

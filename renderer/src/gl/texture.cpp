@@ -170,9 +170,9 @@ Texture2D Texture2D::allocate(const TextureDesc& desc, GLenum internalFormat) {
 
 Result<Texture2D> Texture2D::create(const TextureDesc& desc) {
   PN_TRY(validate(desc, false));
-  clearErrors();
+  beginAllocation();
   Texture2D t = allocate(desc, info(desc.format).internal);
-  PN_TRY(checkError(std::string("allocating a ") + std::to_string(desc.width) + "x" +
+  PN_TRY(checkAllocation(std::string("allocating a ") + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + " " + formatName(desc.format) + " texture"));
   t.memory_ =
       MemoryCharge(storageBytes(desc.width, desc.height, desc.levels, bytesPerPixel(desc.format)));
@@ -189,7 +189,7 @@ Result<Texture2D> Texture2D::createCompressed(int width, int height, uint32_t in
                          .levels = static_cast<int>(levels.size()),
                          .sampler = sampler};
   PN_TRY(validate(desc, false));
-  clearErrors();
+  beginAllocation();
   Texture2D t = allocate(desc, internalFormat);
   for (int level = 0; level < desc.levels; ++level) {
     const auto& blocks = levels[static_cast<size_t>(level)];
@@ -199,7 +199,7 @@ Result<Texture2D> Texture2D::createCompressed(int width, int height, uint32_t in
   }
   char hex[16];
   std::snprintf(hex, sizeof hex, "%X", internalFormat);
-  PN_TRY(checkError("uploading a " + std::to_string(width) + "x" + std::to_string(height) +
+  PN_TRY(checkAllocation("uploading a " + std::to_string(width) + "x" + std::to_string(height) +
                     " compressed texture (format 0x" + hex + ")"));
   int64_t bytes = 0;
   for (const auto& blocks : levels) bytes += static_cast<int64_t>(blocks.size());
@@ -245,7 +245,7 @@ Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layer
     return makeError("texture array layer count " + std::to_string(layers) + " is outside 1.." +
                      std::to_string(maxLayers));
   }
-  clearErrors();
+  beginAllocation();
   GLuint id = 0;
   glGenTextures(1, &id);
   Texture2DArray t;
@@ -257,7 +257,7 @@ Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layer
                  desc.height, layers);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
   applySampler(GL_TEXTURE_2D_ARRAY, desc.sampler);
-  PN_TRY(checkError("allocating a " + std::to_string(desc.width) + "x" +
+  PN_TRY(checkAllocation("allocating a " + std::to_string(desc.width) + "x" +
                     std::to_string(desc.height) + "x" + std::to_string(layers) + " " +
                     formatName(desc.format) + " texture array"));
   t.memory_ = MemoryCharge(
@@ -285,7 +285,7 @@ void Texture2DArray::bind(int unit) const {
 
 Result<TextureCube> TextureCube::create(const TextureDesc& desc) {
   PN_TRY(validate(desc, true));
-  clearErrors();
+  beginAllocation();
   GLuint id = 0;
   glGenTextures(1, &id);
   TextureCube t;
@@ -297,7 +297,7 @@ Result<TextureCube> TextureCube::create(const TextureDesc& desc) {
                  desc.width);
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, desc.levels - 1);
   applySampler(GL_TEXTURE_CUBE_MAP, desc.sampler);
-  PN_TRY(checkError("allocating a " + std::to_string(desc.width) + " px cube map"));
+  PN_TRY(checkAllocation("allocating a " + std::to_string(desc.width) + " px cube map"));
   t.memory_ = MemoryCharge(
       storageBytes(desc.width, desc.width, desc.levels, bytesPerPixel(desc.format), 6));
   return t;

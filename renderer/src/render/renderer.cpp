@@ -20,6 +20,8 @@ Status Renderer::setScene(const Scene& scene) {
   gl::StateGuard guard(impl_->options.preserveHostState);
   auto gs = GpuScene::create(scene);
   if (!gs) return gs.error();
+  // One check for the whole upload where allocations defer theirs (WebGL: gl::checkAllocation).
+  PN_TRY(gl::checkError("uploading the scene"));
   impl_->scene = std::move(*gs);
   if (impl_->pointShadows) impl_->pointShadows->invalidate();
   impl_->sceneLights = scene.lights;
@@ -51,6 +53,7 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   gl::StateGuard guard(impl_->options.preserveHostState);
   auto env = GpuEnvironment::create(environment);
   if (!env) return env.error();
+  PN_TRY(gl::checkError("uploading the environment"));
   impl_->environment = std::move(*env);
   // The mean radiance is the first SH coefficient times Y00.
   const glm::vec3 mean = environment.sh.c[0] * 0.282095f;
