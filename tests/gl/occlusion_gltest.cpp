@@ -148,5 +148,46 @@ TEST_F(OcclusionGLTest, FloorBesideAGlowingWallGetsItsLightOnce) {
   EXPECT_NEAR(measured / expected, 1.0, 0.1);
 }
 
+// A scene whose surfaces face no other (one convex body, one plane) skips the occlusion rays
+// and the probe volume, which could only find the sky; a body on a floor keeps both.
+TEST_F(OcclusionGLTest, ScenesThatCannotSeeThemselvesSkipTheRaysAndTheVolume) {
+  const auto run = [](bool withFloor, ProbeVolumeInfo* info, int* occludedFrames) {
+    Scene s;
+    s.materials = {lambert(glm::vec3(0.7f))};
+    s.meshes.push_back(sphereMesh({0.0f, 1.0f, 0.0f}, 0.6f, 0, 32));
+    if (withFloor) s.meshes.push_back(quadMesh(6.0f, 0.0f, 0));
+    finishScene(s);
+    RenderSettings rs;
+    rs.width = rs.height = 48;
+    rs.progressive.frames = 32;
+    auto r = Renderer::create();
+    EXPECT_TRUE(r.ok());
+    EXPECT_TRUE((*r)->setSettings(rs).ok());
+    EXPECT_TRUE((*r)->setScene(s).ok());
+    EXPECT_TRUE((*r)->setEnvironment(uniformEnvironment(glm::vec3(1.0f))).ok());
+    (*r)->setCamera(lookAtCamera({0.0f, 1.0f, 3.0f}, {0.0f, 1.0f, 0.0f}, 30.0f));
+    *occludedFrames = 0;
+    while (!(*r)->converged()) {
+      EXPECT_TRUE((*r)->step().ok());
+      if ((*r)->lastFrame().occlusion) ++*occludedFrames;
+    }
+    *info = (*r)->probeVolumeInfo();
+    auto img = (*r)->readRadiance();
+    EXPECT_TRUE(img.ok());
+    return img.ok() ? std::move(*img) : Image(48, 48, 4);
+  };
+  ProbeVolumeInfo alone, onFloor;
+  int occludedAlone = -1, occludedOnFloor = -1;
+  const Image sphere = run(false, &alone, &occludedAlone);
+  run(true, &onFloor, &occludedOnFloor);
+  EXPECT_EQ(alone.probes, 0);
+  EXPECT_EQ(occludedAlone, 0);
+  EXPECT_GT(onFloor.probes, 0);
+  EXPECT_GT(occludedOnFloor, 8);
+  // The lone sphere under a uniform sky of 1 shows its albedo's radiance where it faces the
+  // camera (a white furnace: nothing may be lost to occlusion or leak from the probes).
+  EXPECT_NEAR(sphere.pixel(24, 24)[1], 0.7f, 0.03f);
+}
+
 }  // namespace
 }  // namespace penumbra::test

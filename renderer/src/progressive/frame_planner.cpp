@@ -14,8 +14,9 @@ void planCaches(const FramePlan& plan, const FrameScene& scene, const FrameLimit
   // BLEND surfaces cover the pixels differently each frame: the occlusion rays must see this
   // frame's coverage, so the prepass is redrawn every frame when there are any.
   const bool coverageChanges = scene.hasScene && scene.blended;
-  s.drawPrepass = plan.occlusion && (plan.renderPrepass || !caches.prepassValid || coverageChanges);
-  s.occlusion = plan.occlusion && (s.drawPrepass || caches.prepassValid);
+  const bool occlusion = plan.occlusion && scene.seesItself;
+  s.drawPrepass = occlusion && (plan.renderPrepass || !caches.prepassValid || coverageChanges);
+  s.occlusion = occlusion && (s.drawPrepass || caches.prepassValid);
   // The probe volume's per-view cache, read in between remakes (remakeProbeCache: ever more
   // rarely as the volume converges).
   s.readProbeCache = s.occlusion && scene.probes && limits.probeCache;

@@ -22,6 +22,7 @@ progressive::FrameScene Renderer::Impl::frameScene(bool preview) const {
   fs.skyShadows = settings.progressive.skyShadows && scene && !sky.empty() &&
                   environmentMean * settings.environmentIntensity > 0.0f;
   fs.probes = probesOn();
+  fs.seesItself = seesItself;
   if (fs.probes) {
     fs.probeCount = probes->grid().count();
     fs.probeCaptures = probes->captures();

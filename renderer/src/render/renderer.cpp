@@ -2,6 +2,7 @@
 // frame n of the progressive controller's plan (FrameRenderer). The passes do the drawing.
 #include "gl/memory.h"
 #include "render/renderer_impl.h"
+#include "scene/self_visibility.h"
 
 namespace penumbra {
 
@@ -28,6 +29,7 @@ Status Renderer::setScene(const Scene& scene) {
   impl_->setLights();  // after the scene: first light weighs the lights by its bounds
   impl_->probeBox = scene.probeBox;
   impl_->probeCounts = scene.probeCounts;
+  impl_->seesItself = surfacesSeeEachOther(scene);
   PN_TRY(impl_->layoutProbes());
   impl_->controller.invalidate();
   return {};

@@ -72,6 +72,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Bounds probeBox;                            // the scene file's, else the scene's bounds
   glm::ivec3 probeCounts{0};                  // the scene file's (0: from the density)
   std::unique_ptr<GpuScene> scene;
+  // Some surface of the scene faces another (scene/self_visibility.h): without, the probe
+  // volume and the occlusion rays are skipped, as they could only give what is there without.
+  bool seesItself = true;
   std::vector<Light> lights;  // the scene's, then the environment's sun if it has one
   std::vector<Light> sceneLights;
   std::optional<ibl::Sun> sun;  // as stored with the environment (unrotated, unscaled)
@@ -250,14 +253,14 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Status layoutProbes() {
     if (!probes) return {};
     progressive::ProbeGrid grid;
-    if (settings.progressive.probeVolume && scene) {
+    if (settings.progressive.probeVolume && scene && seesItself) {
       grid = progressive::placeProbes(probeBox.valid() ? probeBox : scene->bounds(),
                                       settings.progressive.probeDensity, probeCounts);
     }
     return probes->reset(grid, settings.progressive.probeRelocation);
   }
   bool probesOn() const {
-    return probes && probes->active() && settings.progressive.probeVolume && scene;
+    return probes && probes->active() && settings.progressive.probeVolume && scene && seesItself;
   }
 
   Camera activeCamera() const { return hasCamera ? camera : defaultCameraForBounds(); }
