@@ -216,7 +216,8 @@ export interface ViewerState {
    *  sleeps until a change), and while paused. */
   looping: boolean;
   /** GPU memory held by the renderer's textures, renderbuffers and buffers, from their sizes
-   *  and formats (what the browser keeps beside them is not counted); 0 while lost. */
+   *  and formats (what the browser keeps beside them is not counted); 0 while the context is
+   *  lost or after the module aborted. */
   gpuMemoryBytes: number;
 }
 

@@ -136,7 +136,7 @@ export class Viewer {
              msPerMegapixel: cost === null ? null : cost * 1e6,
              moving: this.#isMoving(performance.now()), paused: this.#loop.paused,
              looping: this.#loop.scheduled,
-             gpuMemoryBytes: this.#lost ? 0 : this.#pv.pv_gpu_memory() };
+             gpuMemoryBytes: this.#lost || this.#dead ? 0 : this.#pv.pv_gpu_memory() };
   }
   // Every setting setSettings() takes: {key, type, min, max, default, range, help}, from the
   // renderer's schema plus the JS side's budgetMs and resolutionScale.

@@ -456,8 +456,8 @@ EMSCRIPTEN_KEEPALIVE int pv_frames_done() {
 EMSCRIPTEN_KEEPALIVE int pv_total_frames() {
   return gViewer && gViewer->renderer ? gViewer->renderer->convergence().expectedFrames : 0;
 }
-// The GPU memory the renderer's textures, renderbuffers and buffers hold (Renderer::gpuMemoryBytes;
-// a double: wasm32's int would cap it at 2 GiB).
+// The GPU memory the renderer's textures, renderbuffers and buffers hold
+// (Renderer::gpuMemoryBytes; a double: wasm32's int would cap it at 2 GiB).
 EMSCRIPTEN_KEEPALIVE double pv_gpu_memory() {
   return static_cast<double>(Renderer::gpuMemoryBytes());
 }
