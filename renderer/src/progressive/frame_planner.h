@@ -28,8 +28,9 @@ struct FrameScene {
   std::vector<PlannerLight> lights;
   bool skyShadows = false;  // the setting, a scene, a sampled sky and a lit environment
   bool probes = false;      // the probe volume is on and made
-  // Some surface faces another (scene/self_visibility.h); without, the occlusion rays are
-  // skipped (they would find nothing).
+  // Some surface faces another (scene/self_visibility.h), or a transmissive one needs the
+  // prepass's depth; without, the prepass and the occlusion rays are skipped (the rays would
+  // find nothing).
   bool seesItself = true;
   int probeCount = 0;
   int probeCaptures = 0;  // captures so far

@@ -22,7 +22,9 @@ progressive::FrameScene Renderer::Impl::frameScene(bool preview) const {
   fs.skyShadows = settings.progressive.skyShadows && scene && !sky.empty() &&
                   environmentMean * settings.environmentIntensity > 0.0f;
   fs.probes = probesOn();
-  fs.seesItself = seesItself;
+  // Transmissive surfaces read the prepass's depth (the surface behind them) even when
+  // nothing can occlude anything.
+  fs.seesItself = seesItself || fs.transmissive;
   if (fs.probes) {
     fs.probeCount = probes->grid().count();
     fs.probeCaptures = probes->captures();
