@@ -72,7 +72,7 @@ export function withTimeout(promise, ms, what) {
 // bounded and removes the profile. Device emulation (deviceScaleFactor, isMobile, hasTouch)
 // passes through to playwright.
 export async function launch({ viewport = { width: 400, height: 420 }, launchMs = 20_000,
-                               extraArgs = [], ...device } = {}) {
+                               ...device } = {}) {
   const profile = mkdtempSync(join(tmpdir(), 'penumbra-chromium-'));
   let context;
   try {
@@ -82,7 +82,7 @@ export async function launch({ viewport = { width: 400, height: 420 }, launchMs 
       timeout: launchMs,
       viewport,
       ...device,
-      args: [...CHROMIUM_ARGS, ...extraArgs],
+      args: CHROMIUM_ARGS,
     }), launchMs + 2_000, 'launch Chromium');
   } catch (e) {
     rmSync(profile, { recursive: true, force: true });
