@@ -78,6 +78,7 @@ class Renderbuffer {
   static Result<Renderbuffer> create(int width, int height, PixelFormat format);
   GLuint id() const { return handle_.id(); }
   PixelFormat format() const { return format_; }
+  int64_t bytes() const { return memory_.bytes(); }  // the GPU memory it holds (MemoryCharge)
 
  private:
   Handle<deleteRenderbuffer> handle_;

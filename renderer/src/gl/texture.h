@@ -78,6 +78,7 @@ class Texture2D {
   int levels() const { return desc_.levels; }
   PixelFormat format() const { return desc_.format; }
   explicit operator bool() const { return static_cast<bool>(handle_); }
+  int64_t bytes() const { return memory_.bytes(); }  // the GPU memory it holds (MemoryCharge)
 
  private:
   // Immutable storage with `desc`'s levels and sampler, in `internalFormat`, left bound.
@@ -106,6 +107,7 @@ class Texture2DArray {
   int layers() const { return layers_; }
   PixelFormat format() const { return desc_.format; }
   explicit operator bool() const { return static_cast<bool>(handle_); }
+  int64_t bytes() const { return memory_.bytes(); }  // the GPU memory it holds (MemoryCharge)
 
  private:
   Handle<deleteTexture> handle_;
@@ -131,6 +133,7 @@ class TextureCube {
   int levels() const { return desc_.levels; }
   PixelFormat format() const { return desc_.format; }
   explicit operator bool() const { return static_cast<bool>(handle_); }
+  int64_t bytes() const { return memory_.bytes(); }  // the GPU memory it holds (MemoryCharge)
 
  private:
   Handle<deleteTexture> handle_;

@@ -362,11 +362,8 @@ Status ProbeVolume::drawFaces(LightingPass& lighting, std::vector<LightingBatch>
 }
 
 int64_t ProbeVolume::memoryBytes() const {
-  int64_t bytes = 0;
-  if (atlas_) bytes += int64_t{8} * atlas_.width() * atlas_.height();
-  if (capture_) bytes += int64_t{12} * capture_.width() * capture_.height();
-  bytes +=
-      static_cast<int64_t>(lightMaps_.size()) * kMaxShadowMaps * 4 * kLightMapSize * kLightMapSize;
+  int64_t bytes = atlas_.bytes() + capture_.bytes() + captureDepth_.bytes();
+  for (const ShadowPass& maps : lightMaps_) bytes += maps.memoryBytes();
   return bytes;
 }
 

@@ -78,6 +78,7 @@ class ShadowPass {
   // program in use.
   void bind(const gl::Program& program, int unit) const;
   int mapSize() const { return size_; }
+  int64_t memoryBytes() const { return maps_.bytes(); }
 
  private:
   ShadowCasterPrograms programs_;
