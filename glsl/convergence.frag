@@ -1,19 +1,12 @@
 // An automatic view's convergence measure (progressive/convergence.h): per tile of
-// PN_TILE x PN_TILE pixels, the RMS change of the displayed image (exposure, tone mapping,
-// sRGB, clamped as the 8-bit image is; in 8-bit steps) from the previous checkpoint's mean to
-// the running mean, and its largest change (one channel of one pixel). One output texel a
-// tile: (RMS, values counted, largest, 1).
-#include "chunks/tonemap.glsl"
-uniform sampler2D uCurrent;
-uniform sampler2D uPrevious;
-uniform float uExposureScale;  // 2^EV
-uniform int uToneMapper;
+// PN_TILE x PN_TILE pixels, the RMS change of the displayed image (in 8-bit steps) from a kept
+// checkpoint's displayed image (checkpoint_snapshot.frag) to that of the running mean, and its
+// largest change (one channel of one pixel). One output texel a tile: (RMS, values counted,
+// largest, 1).
+#include "chunks/displayed.glsl"
+uniform sampler2D uCurrent;   // the running mean, radiance
+uniform sampler2D uPrevious;  // a kept checkpoint, displayed
 out vec4 fragColor;
-
-vec3 displayed(vec4 radiance) {
-  vec3 c = max(radiance.rgb * uExposureScale, vec3(0.0));
-  return clamp(linearToSrgb(toneMap(c, uToneMapper)), 0.0, 1.0);
-}
 
 void main() {
   ivec2 size = textureSize(uCurrent, 0);
@@ -25,8 +18,7 @@ void main() {
     for (int x = 0; x < PN_TILE; ++x) {
       ivec2 p = base + ivec2(x, y);
       if (p.x >= size.x || p.y >= size.y) continue;
-      vec3 d = (displayed(texelFetch(uCurrent, p, 0)) - displayed(texelFetch(uPrevious, p, 0))) *
-               255.0;
+      vec3 d = (displayed(texelFetch(uCurrent, p, 0)) - texelFetch(uPrevious, p, 0).rgb) * 255.0;
       sum += dot(d, d);
       vec3 a = abs(d);
       largest = max(largest, max(a.r, max(a.g, a.b)));

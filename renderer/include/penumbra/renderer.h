@@ -102,10 +102,12 @@ struct ConvergenceInfo {
   double tileError = 0.0;       // its 99th-percentile tile change (RMS, 8-bit steps)
   double convergedTiles = 0.0;  // the fraction of tiles under four times the threshold
   // The frame by which the view is expected to be done: m; for an automatic view from the
-  // error's 1/sqrt(N) fall, a checkpoint, at most maxFrames (its frame once converged).
+  // error's measured fall (decay), a checkpoint, at most maxFrames (its frame once converged).
   int expectedFrames = 0;
   // The fraction of tiles no longer shaded (adaptive frames, skipConvergedTiles).
   double skippedTiles = 0.0;
+  // The error falls as N^-decay, measured between checkpoints (1/2 for noise, up to 1).
+  double decay = 0.5;
 };
 
 // The probe volume as laid out for the current scene (probes 0: off or unavailable).

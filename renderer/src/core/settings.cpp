@@ -98,9 +98,9 @@ const SettingInfo kSchema[] = {
      PN_FIELD(progressive.maxFrames, int)},
     {"convergenceThreshold", "progressive", "convergenceThreshold", "--convergence-threshold",
      SettingType::Float, 0.125, 255, false, false, false, true,
-     "auto frames: converged when the displayed image's estimated error (from its changes at "
-     "the last checkpoints) is under this many 8-bit steps (RMS) and that of 99 % of its 8x8 "
-     "tiles under 4 times it",
+     "auto frames: converged when the displayed image's estimated error against the image at "
+     "maxFrames (from its change since the checkpoint at about half the frames) is under this "
+     "many 8-bit steps (RMS) and that of 99 % of its 8x8 tiles under 3 times it",
      PN_FIELD(progressive.convergenceThreshold, float)},
     {"skipConvergedTiles", "progressive", "skipConvergedTiles", "--no-tile-skip", SettingType::Bool,
      0, 1, false, false, false, true,

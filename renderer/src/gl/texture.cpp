@@ -33,6 +33,8 @@ FormatInfo info(PixelFormat f) {
       return {GL_RG16F, GL_RG, GL_HALF_FLOAT, 4};
     case PixelFormat::R32F:
       return {GL_R32F, GL_RED, GL_FLOAT, 4};
+    case PixelFormat::RGB10A2:
+      return {GL_RGB10_A2, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, 4};
     case PixelFormat::Depth24:
       return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4};
     case PixelFormat::Depth32F:
@@ -131,6 +133,8 @@ const char* formatName(PixelFormat format) {
       return "RG16F";
     case PixelFormat::R32F:
       return "R32F";
+    case PixelFormat::RGB10A2:
+      return "RGB10_A2";
     case PixelFormat::Depth24:
       return "DEPTH_COMPONENT24";
     case PixelFormat::Depth32F:

@@ -19,6 +19,7 @@ enum class PixelFormat {
   RGB16F,  // filterable HDR textures (environment)
   RG16F,
   R32F,
+  RGB10A2,          // UNORM, 10 bits a colour channel (colour-renderable in ES 3.0 / WebGL2)
   Depth24,          // DEPTH_COMPONENT24
   Depth32F,         // DEPTH_COMPONENT32F
   Depth24Stencil8,  // DEPTH24_STENCIL8 (renderbuffers: the frame's depth and tile mask)

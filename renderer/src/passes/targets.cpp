@@ -110,9 +110,12 @@ Status RenderTargets::ensureOcclusion(int block) {
 }
 
 Status RenderTargets::ensureConvergence(int tile) {
-  if (checkpoint.color) return {};
-  auto snap = makeColor(width, height, format, nullptr);
-  if (!snap) return makeError("checkpoint target: " + snap.message());
+  if (convergenceTiles.color) return {};
+  for (auto& c : checkpoints) {
+    auto snap = makeColor(width, height, gl::PixelFormat::RGB10A2, nullptr);
+    if (!snap) return makeError("checkpoint target: " + snap.message());
+    c = std::move(*snap);
+  }
   auto tiles = makeColor(tilesWidth(tile), tilesHeight(tile), format, nullptr);
   if (!tiles) return makeError("convergence target: " + tiles.message());
   auto mask = gl::Texture2D::create(
@@ -121,7 +124,6 @@ Status RenderTargets::ensureConvergence(int tile) {
        .format = gl::PixelFormat::RGBA8,
        .sampler = {.minFilter = gl::Filter::Nearest, .magFilter = gl::Filter::Nearest}});
   if (!mask) return makeError("tile mask: " + mask.message());
-  checkpoint = std::move(*snap);
   convergenceTiles = std::move(*tiles);
   tileMask = std::move(*mask);
   return {};

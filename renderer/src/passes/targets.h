@@ -8,6 +8,7 @@
 
 #include "gl/objects.h"
 #include "gl/texture.h"
+#include "progressive/convergence.h"
 
 namespace penumbra::passes {
 
@@ -51,10 +52,11 @@ struct RenderTargets {
   ColorTarget glassLight;
   ColorTarget behind;
 
-  // An automatic view's convergence measure (progressive/convergence.h): the mean at the last
-  // checkpoint and the tiles' changes, a texel a tile of `tile` pixels, both in the
-  // accumulation format. Made on first use.
-  ColorTarget checkpoint;
+  // An automatic view's convergence measure (progressive/convergence.h): the displayed image
+  // (tone-mapped, sRGB) of the last checkpoints, RGB10_A2 (a quarter of an 8-bit step, the
+  // memory of one float copy of the mean for all four), and the tiles' changes, a texel a tile
+  // of `tile` pixels in the accumulation format. Made on first use.
+  std::array<ColorTarget, progressive::kKeptCheckpoints> checkpoints;
   ColorTarget convergenceTiles;
   gl::Texture2D tileMask;  // RGBA8, a texel a tile: red 255 where the tile is no longer shaded
   int tilesWidth(int tile) const { return (width + tile - 1) / tile; }

@@ -1,5 +1,8 @@
 #include "progressive/controller.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace penumbra::progressive {
 
 void Controller::setSettings(const ProgressiveSettings& settings) {
@@ -76,19 +79,27 @@ Status Controller::finishFrame(FrameRenderer& renderer) {
   auto tiles = renderer.measureTiles(frame.frame);
   if (!tiles) return tiles.error();
   if (tiles->rms.empty()) return {};
+  // The change since the kept checkpoint, as the standard error of the image shown now.
+  const auto scale = static_cast<float>(changeScale(frame.frame, tiles->against));
+  for (float& v : tiles->rms) v *= scale;
+  for (float& v : tiles->max) v *= scale;
   const double threshold = settings_.convergenceThreshold;
-  // Each tile's error from its last two changes (the first measured checkpoint has one).
-  std::vector<float> errors = tiles->rms;
-  if (previousRms_.size() == errors.size()) {
-    for (size_t i = 0; i < errors.size(); ++i) {
-      errors[i] = pooledError(tiles->rms[i], previousRms_[i]);
-    }
-  }
-  previousRms_ = tiles->rms;
+  // What is left of each tile's error to change before the cap (the oracle's measure: the image
+  // against the cap's, which shares the first N frames), sqrt(1 - N / cap) of it for noise; as
+  // the 8-bit image shows it (displayedError).
+  const double rest =
+      std::sqrt(std::max(0.0, 1.0 - frame.frame / static_cast<double>(planFrames(settings_))));
+  std::vector<float> errors(tiles->rms.size());
+  for (size_t i = 0; i < errors.size(); ++i) errors[i] = displayedError(tiles->rms[i] * rest);
   // The skipped tiles' changes are zero: their frozen ones stand in (TileSkip).
   estimate_ = summarizeTiles(skip_.effective(errors), threshold, frame.frame);
+  // How fast the two measures fall, for the view's expected end.
+  errorTrend_.push_back({frame.frame, withoutRounding(estimate_.error)});
+  tileTrend_.push_back({frame.frame, withoutRounding(estimate_.tileError)});
+  estimate_.decay = decayRate(errorTrend_);
+  estimate_.tileDecay = decayRate(tileTrend_);
   stopped_ = estimate_.converged;
-  if (!stopped_ && settings_.skipConvergedTiles && skip_.update(*tiles, threshold, frame.frame)) {
+  if (!stopped_ && settings_.skipConvergedTiles && skip_.update(*tiles, threshold, frame.frame, errors)) {
     PN_TRY(renderer.skipTiles(skip_.mask()));
   }
   estimate_.skippedTiles =

@@ -31,8 +31,9 @@ class FrameRenderer {
     return true;
   }
   // At a checkpoint of an automatic view, after its frame is complete: the RMS and the largest
-  // change of the displayed image per tile since the previous checkpoint of this view (empty at
-  // the first), in 8-bit steps; the renderer keeps this checkpoint's image for the next.
+  // change of the displayed image per tile, in 8-bit steps, since the kept checkpoint of this
+  // view that comparisonCheckpoint picks (empty when none is kept); the renderer keeps this
+  // checkpoint's image among the last kKeptCheckpoints.
   virtual Result<TileChanges> measureTiles(int frame) {
     (void)frame;
     return TileChanges{};
@@ -101,7 +102,8 @@ class Controller {
   bool stopped_ = false;
   ConvergenceEstimate estimate_;
   TileSkip skip_;
-  std::vector<float> previousRms_;  // each tile's change at the checkpoint before
+  std::vector<TrendPoint> errorTrend_;  // every checkpoint's estimate of this view
+  std::vector<TrendPoint> tileTrend_;   // and its tiles' 99th percentile
 
   void restart() {
     next_ = 1;
@@ -109,7 +111,8 @@ class Controller {
     stopped_ = false;
     estimate_ = {};
     skip_.reset();
-    previousRms_.clear();
+    errorTrend_.clear();
+    tileTrend_.clear();
   }
   // Frame next_ is complete: counts it and, at an automatic view's checkpoint, measures.
   Status finishFrame(FrameRenderer& renderer);

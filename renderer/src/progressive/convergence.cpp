@@ -33,12 +33,56 @@ ConvergenceEstimate summarizeTiles(std::span<const float> tileRms, double thresh
   return e;
 }
 
-float pooledError(float rms, float previousRms) {
-  if (!(previousRms >= 0.0f) || !std::isfinite(previousRms)) return rms;
-  return std::sqrt(0.5f * (rms * rms + 0.5f * previousRms * previousRms));
+int comparisonCheckpoint(int frame, std::span<const int> kept) {
+  int best = 0;
+  double bestDistance = INFINITY;
+  for (const int k : kept) {
+    if (k < 2 || k >= frame) continue;
+    const double d = std::abs(std::log(2.0 * k / frame));
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = k;
+    }
+  }
+  return best;
 }
 
-bool TileSkip::update(const TileChanges& changes, double threshold, int frame) {
+double changeScale(int frame, int against) {
+  if (against <= 0 || against >= frame) return 1.0;
+  return std::sqrt(static_cast<double>(against) / static_cast<double>(frame - against));
+}
+
+double decayRate(std::span<const TrendPoint> trend) {
+  const size_t first = trend.size() > kTrendPoints ? trend.size() - kTrendPoints : 0;
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = first; i < trend.size(); ++i) {
+    const TrendPoint& p = trend[i];
+    if (p.frame <= 0 || !(p.value > 0.0) || !std::isfinite(p.value)) continue;
+    const double x = std::log(static_cast<double>(p.frame)), y = std::log(p.value);
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  const double den = n * sxx - sx * sx;
+  if (n < 2 || !(den > 1e-12)) return kDecayPrior;
+  const double slope = -(n * sxy - sx * sy) / den;
+  const double weight = std::min(1.0, (n - 1.0) / 4.0);
+  return std::clamp(kDecayPrior + weight * (slope - kDecayPrior), 0.5, 1.0);
+}
+
+float displayedError(double estimate) {
+  const double e = kChangeMargin * estimate;
+  return static_cast<float>(std::sqrt(e * e + 1.0 / 6.0));
+}
+
+double withoutRounding(double displayed) {
+  return std::sqrt(std::max(displayed * displayed - 1.0 / 6.0, 1e-4)) / kChangeMargin;
+}
+
+bool TileSkip::update(const TileChanges& changes, double threshold, int frame,
+                      std::span<const float> shown) {
   const size_t n = changes.rms.size();
   if (n == 0 || changes.max.size() != n) return false;
   if (mask_.size() != n) {
@@ -55,7 +99,7 @@ bool TileSkip::update(const TileChanges& changes, double threshold, int frame) {
       continue;
     }
     mask_[i] = 1;
-    frozen_[i] = r;
+    frozen_[i] = shown.size() == n ? shown[i] : r;
     ++skipped_;
     added = true;
   }
@@ -74,11 +118,17 @@ std::vector<float> TileSkip::effective(std::span<const float> rms) const {
 int expectedFrames(const ConvergenceEstimate& e, double threshold, int cap) {
   if (!e.measured || threshold <= 0.0) return cap;
   if (e.converged) return std::min(e.frame, cap);
-  const double ratio = std::max(e.error / threshold, e.tileError / (kTileFactor * threshold));
-  const double need = std::isfinite(ratio) ? e.frame * ratio * ratio : static_cast<double>(cap);
-  int n = kFirstBlockFrames;
-  while (n < need && n < cap) n *= 2;
-  return std::min(std::max(n, 2 * e.frame), cap);
+  const auto frames = [&](double value, double bound, double decay) {
+    const double ratio = withoutRounding(value) / withoutRounding(bound);
+    if (!std::isfinite(ratio)) return static_cast<double>(cap);
+    return e.frame * std::pow(std::max(ratio, 1.0), 1.0 / std::clamp(decay, 0.5, 1.0));
+  };
+  const double need = std::max(frames(e.error, threshold, e.decay),
+                               frames(e.tileError, kTileFactor * threshold, e.tileDecay));
+  for (const int c : autoCheckpoints(cap)) {
+    if (c > e.frame && c >= need) return c;
+  }
+  return cap;
 }
 
 }  // namespace penumbra::progressive

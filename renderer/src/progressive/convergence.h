@@ -1,15 +1,19 @@
 // Measured convergence of an automatic view (ProgressiveSettings::frames 0). At each checkpoint
-// N of the plan (8, 16, 32, ...: block ends, where the running mean is a complete estimate) the
-// renderer measures, per 8x8 tile, the RMS change of the displayed image (8-bit steps) since
-// the previous checkpoint N/2. With I_N = (A + B) / 2 for the means A and B of the two halves,
-// I_N - I_{N/2} = (B - A) / 2, whose variance is that of I_N itself: the change estimates the
-// standard error of the image shown now (for a bias that falls as 1/N, such as a mean still
-// holding the first frames of a filling probe volume, it is that bias). A tile's error is
-// estimated from its last two changes (pooledError: one tile's change is a noisy figure). The
-// view has converged when the RMS of those estimates over the image is under the threshold and
-// 99 % of the tiles are under four times the threshold (no region left visibly noisy: edges,
-// whose coverage converges as N^-3/4, keep single tiles over it longest). GL-free; the
-// renderer draws the tiles (glsl/convergence.frag).
+// N of the plan (progressive/distributor.h: block ends about 2^(1/4) apart, where the running
+// mean is a complete estimate) the renderer measures, per 8x8 tile, the RMS change of the
+// displayed image (8-bit steps) since a kept earlier checkpoint M, the one nearest N/2
+// (comparisonCheckpoint). With I_N = (M I_M + (N - M) B) / N for B the mean of frames M+1..N,
+// Var(I_N - I_M) = Var(I_N) (N - M) / M for independent frames, so the change times
+// sqrt(M / (N - M)) (changeScale) estimates the standard error of the image shown now; at
+// M = N/2 the factor is 1, and for a bias that falls as 1/N (a mean still holding the first
+// frames of a filling probe volume, stratified anti-aliasing) the change from N/2 is that bias.
+// Each tile's estimate is taken as it is, not pooled with earlier ones: the oracle measures one
+// realization of the image, whose tiles scatter as much as their changes do. The view has
+// converged when the RMS of those estimates over the image is under the threshold and 99 % of
+// the tiles are under three times the threshold (no region left visibly noisy: edges, whose
+// coverage converges as N^-3/4, keep single tiles over it longest). At the default threshold of
+// one 8-bit step that is the stopping oracle's criterion (tools/oracle). GL-free; the renderer draws
+// the tiles (glsl/convergence.frag).
 #pragma once
 
 #include <cstdint>
@@ -20,7 +24,7 @@ namespace penumbra::progressive {
 
 inline constexpr int kConvergenceTile = 8;          // pixels a side
 inline constexpr double kConvergedFraction = 0.99;  // of the tiles
-inline constexpr double kTileFactor = 4.0;          // their bound, times the threshold
+inline constexpr double kTileFactor = 3.0;          // their bound, times the threshold
 
 // Adaptive frames: from checkpoint kSkipFromFrame on, a tile whose RMS change is under
 // kSkipFactor times the threshold and whose largest single change (a channel of one pixel) is
@@ -32,21 +36,53 @@ inline constexpr double kSkipFactor = 0.5;
 inline constexpr double kSkipPixelFactor = 2.0;
 inline constexpr int kSkipFromFrame = 32;
 
-// A checkpoint's measurement, per tile: the RMS change and the largest change, 8-bit steps.
+// A checkpoint's measurement, per tile: the RMS change and the largest change, 8-bit steps,
+// against the image of checkpoint `against` (0: none was kept, nothing measured).
 struct TileChanges {
   std::vector<float> rms;
   std::vector<float> max;
+  int against = 0;
 };
 
-// A tile's error at checkpoint N from its change since N/2 (`rms`) and the change before that
-// (`previousRms`, N/4 to N/2). Each estimates the error's variance under the same 1/sqrt(N)
-// law the estimate assumes throughout: rms^2 that at N, previousRms^2 that at N/2, twice as
-// large. Their mean, (rms^2 + previousRms^2 / 2) / 2, has half the variance of rms^2 alone:
-// one tile's change is a noisy figure (a few edge pixels carry it), and the 99th percentile of
-// noisy figures sits above that of the errors they estimate. For an error falling faster than
-// 1/sqrt(N) (a filling volume's 1/N bias, stratified sampling) the earlier change is the larger
-// and the estimate errs high. `rms` alone where previousRms is negative or not finite.
-float pooledError(float rms, float previousRms);
+// Earlier checkpoints' images the renderer keeps for the comparison: with checkpoints 2^(1/4)
+// apart, the fourth before N is N/2.
+inline constexpr int kKeptCheckpoints = 4;
+
+// Of the kept checkpoints (`kept`, frames, any order; 0 for an empty slot), the one to compare
+// checkpoint `frame` with: the nearest to frame / 2 in ratio among those from 2 to frame - 1.
+// 0 when none is.
+int comparisonCheckpoint(int frame, std::span<const int> kept);
+// The factor that turns the change from checkpoint `against` to `frame` into the standard
+// error of the image at `frame`: sqrt(against / (frame - against)).
+double changeScale(int frame, int against);
+
+// The rate at which a measure falls, as the exponent a of N^-a: the least-squares slope of
+// log(value) against log(frame) over `trend` (checkpoints, oldest first; the last kTrendPoints
+// count), drawn towards kDecayPrior while fewer than five points carry it (early checkpoints'
+// estimates are noisy). Clamped to [0.5, 1]: independent noise falls as N^-1/2, stratified
+// sampling and a filling volume's bias as N^-1. The prior, 0.75, is where the evaluation scenes'
+// estimates fall between frames 8 and 200 (tools/oracle --trace: 0.6 to 0.85).
+inline constexpr size_t kTrendPoints = 8;
+inline constexpr double kDecayPrior = 0.75;
+struct TrendPoint {
+  int frame = 0;
+  double value = 0.0;
+};
+double decayRate(std::span<const TrendPoint> trend);
+
+// The change from N/2 to N understates a real render's error where part of it falls slowly (the
+// probe volume keeps filling for hundreds of frames in an interior: a drift the change hardly
+// sees, which the image at the cap no longer has). Measured with tools/oracle: 1.1 put eight
+// views of nine scenes and models nearest their oracle frames, 1.0 and 1.2 fewer
+// (docs/decisions/2026-12-07-stopping-oracle.md).
+inline constexpr double kChangeMargin = 1.1;
+// A tile's estimated error (its change scaled to the error, in 8-bit steps) as the displayed
+// 8-bit image shows it: times kChangeMargin, with the variance of two roundings to 8 bits
+// (1/6 of a step squared: the image now and the final one) added.
+float displayedError(double estimate);
+// The inverse, for how the error falls: displayedError without the rounding (never below a
+// hundredth of a step).
+double withoutRounding(double displayed);
 
 // The tiles an automatic view no longer shades, kept by the controller. A skipped tile stays
 // skipped until the view restarts; its change at the checkpoint that froze it stands in for
@@ -55,8 +91,11 @@ float pooledError(float rms, float previousRms);
 class TileSkip {
  public:
   void reset() { *this = {}; }
-  // Adds the tiles converged at checkpoint `frame`. True when any was added.
-  bool update(const TileChanges& changes, double threshold, int frame);
+  // Adds the tiles converged at checkpoint `frame` (by their changes, scaled to errors), each
+  // standing in from now on with its error as shown (`shown`, displayedError; the change where
+  // empty). True when any was added.
+  bool update(const TileChanges& changes, double threshold, int frame,
+              std::span<const float> shown = {});
   // The tiles' RMS changes with the skipped tiles' frozen ones in place.
   std::vector<float> effective(std::span<const float> rms) const;
   // A byte a tile (1: skipped), row-major from the bottom row: empty before any was skipped.
@@ -77,15 +116,19 @@ struct ConvergenceEstimate {
   double convergedTiles = 0.0;  // fraction of tiles under kTileFactor times the threshold
   bool converged = false;       // error < threshold and tileError < kTileFactor threshold
   double skippedTiles = 0.0;    // fraction of tiles no longer shaded (adaptive frames)
+  double decay = 0.5;           // the error falls as N^-decay over the last checkpoints
+  double tileDecay = 0.5;       // and the tiles' 99th percentile as N^-tileDecay
 };
 
 // The estimate from the tiles' RMS changes at checkpoint `frame`.
 ConvergenceEstimate summarizeTiles(std::span<const float> tileRms, double threshold, int frame);
 
-// The frame at which the view is expected to converge: the error falls as 1/sqrt(N) (the
-// slowest rate of its terms; stratified ones fall faster), so N r^2 for r the larger of
-// error / threshold and tileError / (kTileFactor threshold),
-// rounded up to a checkpoint (a power of two, kFirstBlockFrames or more) and at most `cap`.
+// The frame at which the view is expected to converge: the error and the tiles' fall at their
+// measured rates (decay, tileDecay: independent noise 1/2, stratified terms and a filling
+// volume's bias up to 1), so the later of N (error / threshold)^(1/decay) and
+// N (tileError / (kTileFactor threshold))^(1/tileDecay) (each without the 8-bit rounding, which
+// does not fall), rounded up to a checkpoint of the plan (autoCheckpoints) after N and at most
+// `cap`.
 // Without a measurement: `cap`.
 int expectedFrames(const ConvergenceEstimate& e, double threshold, int cap);
 

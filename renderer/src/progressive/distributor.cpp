@@ -12,6 +12,17 @@ int directStartFrame(int frames, float directDelay, bool firstLight) {
   return std::clamp(start, 2, frames);
 }
 
+std::vector<int> autoCheckpoints(int cap) {
+  std::vector<int> out;
+  int c = 2;
+  while (c < cap) {
+    out.push_back(c);
+    c = c < 8 ? c + 2 : std::max(c + 1, static_cast<int>(std::lround(c * kCheckpointRatio)));
+  }
+  out.push_back(std::max(cap, 1));
+  return out;
+}
+
 namespace {
 
 // About two shadow-map passes per direct frame in all, at most 64 per light (the paper's
@@ -21,12 +32,14 @@ int samplesFor(int directFrames, int lightCount) {
 }
 
 // An automatic view's blocks: samples at a steady rate (two shadow-map passes a frame in all,
-// at most one every two frames a light, the rate of a 128-frame view's 64), so that the
-// blocks' weights, proportional to their frames, stay proportional to their samples and each
-// checkpoint's estimate has twice the samples of the one before.
-int blockSamples(int directFrames, int lightCount) {
+// at most one every two frames a light, the rate of a 128-frame view's 64), counted from the
+// light's first frame to the block's end, so that at every checkpoint the light's samples so far
+// are in proportion to its frames whatever the blocks' lengths; at least one a block, so every
+// checkpoint has each light complete.
+int blockSamples(int framesSoFar, uint32_t usedSoFar, int lightCount) {
   const double rate = std::min(2.0 / std::max(lightCount, 1), 0.5);
-  return std::max(1, static_cast<int>(std::lround(directFrames * rate)));
+  const long due = std::lround(framesSoFar * rate) - static_cast<long>(usedSoFar);
+  return static_cast<int>(std::max(1L, due));
 }
 
 struct Block {
@@ -36,21 +49,22 @@ struct Block {
 
 std::vector<Block> planBlocks(const ProgressiveSettings& s, bool firstLight) {
   const int m = std::max(1, planFrames(s));
-  if (s.frames > 0 || m <= kFirstBlockFrames) {
-    return {{1, m, directStartFrame(m, s.directDelay, firstLight)}};
+  if (s.frames > 0 || m <= 2) return {{1, m, directStartFrame(m, s.directDelay, firstLight)}};
+  std::vector<Block> blocks;
+  int begin = 1;
+  for (const int end : autoCheckpoints(m)) {
+    // Direct light from frame 2 on: frame 1 is the environment's (and first light's) alone.
+    blocks.push_back({begin, end, std::max(begin, 2)});
+    begin = end + 1;
   }
-  std::vector<Block> blocks{
-      {1, kFirstBlockFrames, directStartFrame(kFirstBlockFrames, s.directDelay, firstLight)}};
-  for (int b = kFirstBlockFrames; b < m; b *= 2)
-    blocks.push_back({b + 1, std::min(2 * b, m), b + 1});
   return blocks;
 }
 
 // One block's light samples: per light n centre-outward points whose weights add up to the
 // block's frames (less frame 1's first light in the first block), spread by Algorithm 1.
 void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
-                     const std::vector<LightInfo>& lights, const Block& block, int blockIndex,
-                     bool firstLight) {
+                     const std::vector<LightInfo>& lights, const Block& block,
+                     std::vector<uint32_t>& used, bool firstLight) {
   struct Pending {
     float rank;  // normalised position in the light's own order, for merging
     int light;
@@ -62,16 +76,26 @@ void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
   for (size_t i = 0; i < lights.size(); ++i) {
     const bool early = lights[i].fromFrameOne;
     const int directFrames = block.end - (early ? block.begin : block.directStart) + 1;
+    const int lightCount = static_cast<int>(lights.size());
     const int n = single               ? 1
                   : s.lightSamples > 0 ? s.lightSamples
-                  : s.frames > 0       ? samplesFor(directFrames, static_cast<int>(lights.size()))
-                                 : blockSamples(directFrames, static_cast<int>(lights.size()));
+                  : s.frames > 0       ? samplesFor(directFrames, lightCount)
+                                 : blockSamples(block.end - (early ? 0 : 1), used[i], lightCount);
     // Frame 1's first light took one frame of the first block's weight.
     const int share = len - (firstLight && !early && block.begin == 1 && !single ? 1 : 0);
     if (share <= 0) continue;
-    auto pts = lightSamplePoints(
-        n, lights[i].shape, lights[i].aspect,
-        s.seed + 7919u * static_cast<uint32_t>(i) + 104729u * static_cast<uint32_t>(blockIndex));
+    const uint32_t lightSeed = s.seed + 7919u * static_cast<uint32_t>(i);
+    // A fixed m: one stratified set. An automatic view: the next n points of the light's own
+    // open-ended sequence, so the samples of every block so far are one stratified prefix.
+    std::vector<glm::vec2> pts;
+    if (s.frames > 0 || single) {
+      pts = lightSamplePoints(n, lights[i].shape, lights[i].aspect, lightSeed);
+    } else {
+      for (int j = 0; j < n; ++j) {
+        pts.push_back(lightSequencePoint(used[i]++, lights[i].shape, lightSeed));
+      }
+      sortFromCentre(pts, lights[i].shape, lights[i].aspect);
+    }
     for (int j = 0; j < n; ++j) {
       LightSample ls;
       ls.light = static_cast<int>(i);
@@ -136,9 +160,8 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
                                 .shadowed = lights[i].shape != LightShape::Point});
     }
   }
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    distributeBlock(plan, s, lights, blocks[b], static_cast<int>(b), firstLight);
-  }
+  std::vector<uint32_t> used(lights.size(), 0);  // each light's sequence points taken
+  for (const Block& b : blocks) distributeBlock(plan, s, lights, b, used, firstLight);
   return plan;
 }
 

@@ -5,11 +5,13 @@
 // pass, so the number of shadow-map passes per frame differs by at most one between the frames
 // of the direct range.
 //
-// The plan is a sequence of blocks. A fixed m is one block, frames 1..m. An automatic view
-// (frames 0) is nested blocks 1..8, 9..16, 17..32, ... up to maxFrames, each with its own
-// stratified light samples: light i's n_i samples of a block of length len weigh len / n_i,
-// so at every block end (a checkpoint) each light carries its full energy and the running mean
-// is a complete estimate, wherever an automatic view stops.
+// The plan is a sequence of blocks. A fixed m is one block, frames 1..m, with one stratified set
+// of light samples. An automatic view (frames 0) is open-ended: blocks end at checkpoints about
+// 2^(1/4) apart (autoCheckpoints) up to maxFrames, and each light's samples are the next points
+// of one open-ended low-discrepancy sequence (lightSequencePoint), so the samples up to any
+// checkpoint are a stratified prefix. Light i's n_i samples of a block of length len weigh
+// len / n_i, so at every block end (a checkpoint) each light carries its full energy and the
+// running mean is a complete estimate, wherever an automatic view stops.
 #pragma once
 
 #include <vector>
@@ -28,8 +30,12 @@ struct LightInfo {
   bool fromFrameOne = false;
 };
 
-// An automatic view's first block; its later blocks double.
-inline constexpr int kFirstBlockFrames = 8;
+// An automatic view's checkpoints: 2, 4, 6, 8, then each about kCheckpointRatio times the last
+// (10, 12, 14, 17, 20, ...), and the cap. Fine enough that a stop lands within 1.19x of the
+// frame where the view first measures converged; frame 1 (environment and first light alone)
+// ends the first block with frame 2.
+inline constexpr double kCheckpointRatio = 1.189207115002721;  // 2^(1/4)
+std::vector<int> autoCheckpoints(int cap);
 
 // First frame (1-based) that carries direct-light samples of a block of `frames` frames. The
 // delay keeps navigation under environment light free of flicker; where the scene's own lights

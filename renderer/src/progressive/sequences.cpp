@@ -82,6 +82,11 @@ std::vector<glm::vec2> lightSamplePoints(int n, LightShape shape, float aspect, 
     p -= glm::floor(p);
     pts.push_back(p);
   }
+  sortFromCentre(pts, shape, aspect);
+  return pts;
+}
+
+void sortFromCentre(std::vector<glm::vec2>& pts, LightShape shape, float aspect) {
   auto key = [&](glm::vec2 p) {
     if (shape == LightShape::Disk) return glm::length(concentricDisk(p));
     glm::vec2 d = (p - 0.5f) * glm::vec2(aspect, 1.0f);
@@ -89,7 +94,12 @@ std::vector<glm::vec2> lightSamplePoints(int n, LightShape shape, float aspect, 
   };
   std::stable_sort(pts.begin(), pts.end(),
                    [&](glm::vec2 a, glm::vec2 b) { return key(a) < key(b); });
-  return pts;
+}
+
+glm::vec2 lightSequencePoint(uint32_t index, LightShape shape, uint32_t seed) {
+  if (shape == LightShape::Point) return glm::vec2(0.5f);
+  const glm::vec2 p = r2(index) + seedOffset(seed, 2);
+  return p - glm::floor(p);
 }
 
 }  // namespace penumbra::progressive

@@ -29,6 +29,14 @@ enum class LightShape { Rect, Disk, Point };
 // aspect (width / height), radial (concentric mapping) on a disk.
 std::vector<glm::vec2> lightSamplePoints(int n, LightShape shape, float aspect, uint32_t seed);
 
+// Point `index` of a light's open-ended sequence in [0,1]^2 (R2, rotated by the seed): every
+// prefix is stratified, so an automatic view that stops anywhere has sampled the light evenly.
+// Index 0 is the centre for seed 0. A point light's is always its centre.
+glm::vec2 lightSequencePoint(uint32_t index, LightShape shape, uint32_t seed);
+// Sorts points by the distance of their image on the light from its centre (as
+// lightSamplePoints orders its own).
+void sortFromCentre(std::vector<glm::vec2>& pts, LightShape shape, float aspect);
+
 // Shirley-Chiu concentric mapping of [0,1]^2 onto the unit disk (area-preserving, keeps
 // stratification); the centre 0.5, 0.5 maps to the origin.
 glm::vec2 concentricDisk(glm::vec2 u);

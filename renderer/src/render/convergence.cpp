@@ -1,8 +1,10 @@
 // Renderer::Impl::measureTiles: an automatic view's convergence measure at a checkpoint
 // (progressive/convergence.h). glsl/convergence.frag compares the displayed image of the
-// running mean with that of the previous checkpoint's mean, a texel per tile; the small result
-// is read back, and the mean is copied for the next checkpoint. skipTiles: adaptive frames, the
+// running mean with a kept checkpoint's, a texel per tile; the small result is read back, and
+// the displayed image is kept (checkpoint_snapshot.frag) in place of the oldest. skipTiles: adaptive frames, the
 // tiles measured converged marked in the frame's stencil (glsl/tile_mask.frag).
+#include <algorithm>
+
 #include "gl/errors.h"
 #include "render/renderer_impl.h"
 
@@ -11,34 +13,49 @@ namespace penumbra {
 Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
   constexpr int tile = progressive::kConvergenceTile;
   PN_TRY(targets->ensureConvergence(tile));
-  if (!convergence) {
-    auto pass = passes::FullscreenPass::create(library, "convergence.frag", false,
+  for (auto [pass, file] : {std::pair{&convergence, "convergence.frag"},
+                            std::pair{&checkpointSnapshot, "checkpoint_snapshot.frag"}}) {
+    if (*pass) continue;
+    auto made = passes::FullscreenPass::create(library, file, false,
                                                {{"PN_TILE", std::to_string(tile)}});
-    if (!pass) return pass.error();
-    convergence.emplace(std::move(*pass));
+    if (!made) return made.error();
+    pass->emplace(std::move(*made));
   }
   auto& t = *targets;
   const auto& mean = t.accumulation[static_cast<size_t>(t.current)];
+  const auto displayUniforms = [&](const gl::Program& p) {
+    mean.color.bind(0);
+    p.set("uCurrent", 0);
+    p.set("uExposureScale", std::exp2(settings.exposure));
+    p.set("uToneMapper", static_cast<int>(settings.toneMapper));
+  };
   progressive::TileChanges changes;
-  if (checkpointFrame > 0 && checkpointFrame < frame) {
-    const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
+  changes.against = progressive::comparisonCheckpoint(frame, checkpointFrames);
+  const auto kept = [&](int f) {
+    return static_cast<size_t>(std::find(checkpointFrames.begin(), checkpointFrames.end(), f) -
+                               checkpointFrames.begin());
+  };
+  const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
+  if (changes.against > 0) {
     t.convergenceTiles.framebuffer.bind();
     gl::setViewport(0, 0, tw, th);
     const gl::Program& p = convergence->begin();
-    mean.color.bind(0);
-    t.checkpoint.color.bind(1);
-    p.set("uCurrent", 0);
+    displayUniforms(p);
+    t.checkpoints[kept(changes.against)].color.bind(1);
     p.set("uPrevious", 1);
-    p.set("uExposureScale", std::exp2(settings.exposure));
-    p.set("uToneMapper", static_cast<int>(settings.toneMapper));
     convergence->draw();
-    gl::Texture2D::unbind(0);
     gl::Texture2D::unbind(1);
   }
-  // Queued before the read-back below waits for the GPU.
-  mean.framebuffer.blitColorTo(t.checkpoint.framebuffer, t.width, t.height);
-  if (checkpointFrame > 0 && checkpointFrame < frame) {
-    const int tw = t.tilesWidth(tile), th = t.tilesHeight(tile);
+  // This checkpoint's displayed image replaces the oldest kept (an empty slot is 0). Queued
+  // before the read-back below waits for the GPU.
+  const size_t slot = kept(*std::min_element(checkpointFrames.begin(), checkpointFrames.end()));
+  t.checkpoints[slot].framebuffer.bind();
+  gl::setViewport(0, 0, t.width, t.height);
+  displayUniforms(checkpointSnapshot->begin());
+  checkpointSnapshot->draw();
+  gl::Texture2D::unbind(0);
+  checkpointFrames[slot] = frame;
+  if (changes.against > 0) {
     const std::vector<float> texels = t.convergenceTiles.framebuffer.readRgbaFloat(0, 0, 0, tw, th);
     changes.rms.reserve(static_cast<size_t>(tw) * th);
     changes.max.reserve(static_cast<size_t>(tw) * th);
@@ -47,7 +64,6 @@ Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
       changes.max.push_back(texels[i + 2]);
     }
   }
-  checkpointFrame = frame;
   PN_TRY(gl::checkError("measuring convergence at frame " + std::to_string(frame)));
   return changes;
 }

@@ -278,7 +278,7 @@ void Renderer::Impl::beginFrame(const FramePlan& plan, int tiles, bool preview) 
   endPass(nullptr);
   if (plan.frame == 1) {
     targets->current = 0;
-    checkpointFrame = 0;
+    checkpointFrames.fill(0);
     tilesSkipped = false;
   }
   const Camera cam = activeCamera();

@@ -137,7 +137,8 @@ ConvergenceInfo Renderer::convergence() const {
           .tileError = e.tileError,
           .convergedTiles = e.convergedTiles,
           .expectedFrames = c.expectedFrames(),
-          .skippedTiles = e.skippedTiles};
+          .skippedTiles = e.skippedTiles,
+          .decay = e.decay};
 }
 const FrameStats& Renderer::lastFrame() const {
   return impl_->stats;

@@ -63,7 +63,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::FullscreenPass> tonemap;
   passes::EffectChain effects;                        // post effects before tone mapping
   std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
-  int checkpointFrame = 0;  // the frame whose mean targets->checkpoint holds (0: none this view)
+  std::optional<passes::FullscreenPass> checkpointSnapshot;  // likewise
+  // The checkpoint whose displayed image each of targets->checkpoints holds (0: none this view).
+  std::array<int, progressive::kKeptCheckpoints> checkpointFrames{};
   std::optional<passes::FullscreenPass> tileMaskPass;  // made on first use
   // The frame's stencil marks tiles this view no longer shades (skipTiles): the image units
   // (lighting, compose, accumulation) test it. Cleared by frame 1.
