@@ -21,7 +21,8 @@ export interface PenumbraViewerEventMap {
   /** A scene from src loaded (its variant-name and camera-* applied). */
   load: CustomEvent<{ url: string; scene: SceneInfo }>;
   error: CustomEvent<PenumbraViewerErrorDetail>;
-  /** A frame completed: frame of total (totalProgress = frame / total). */
+  /** A frame completed: frame of total (totalProgress: frame / total, never going back and
+   *  rising at most 0.25 a frame, as the total of an automatic view is an estimate). */
   progress: CustomEvent<{ frame: number; total: number; totalProgress: number }>;
   /** Once per view (scene, camera, settings that restart). */
   converged: CustomEvent<{ frame: number; total: number; milliseconds: number }>;

@@ -12,6 +12,7 @@
 // (occlusionDistance -> occlusion-distance), so a new setting needs no change here. Plain JS
 // over the public API: nothing of this is compiled into the wasm module.
 import { Penumbra, PenumbraError } from './penumbra.mjs';
+import { ProgressMeter } from './progress.mjs';
 
 export { Penumbra, PenumbraError, Viewer, version } from './penumbra.mjs';
 
@@ -84,6 +85,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #visible = false;            // on screen (IntersectionObserver)
   #interacted = false;         // reveal="interaction": the user clicked or pressed a key
   #drawn = false;              // a frame was drawn (the poster then goes, for good)
+  #meter = new ProgressMeter();  // totalProgress: monotone, at most 0.25 a frame
   #loadedSrc = null;           // the URL of the scene shown
   #applied = null;             // what the viewer was last given, by attribute
   #cameraSet = false; #variantSet = false;
@@ -226,7 +228,8 @@ export class PenumbraViewerElement extends HTMLElement {
         this.#drawn = true;
         this.#poster.hidden = !this.#posterShown();
       }
-      this.#dispatch('progress', { ...d, totalProgress: d.total ? Math.min(1, d.frame / d.total) : 0 });
+      const { percent } = this.#meter.update({ ...d, converged: false, frameMs: 0 });
+      this.#dispatch('progress', { ...d, totalProgress: percent / 100 });
     });
     v.on('converged', (d) => this.#dispatch('converged', d));
     v.on('error', (e) => this.#fail('render', e));

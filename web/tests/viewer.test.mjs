@@ -156,6 +156,10 @@ test('loads the default scene (Cornell box) and reaches m frames', { timeout: TE
     assert.ok(words.includes('Loading') && words.includes('Refining') && words.at(-1) === 'Done',
               `the status line said Loading, Refining, Done (got ${words.join(' -> ')})`);
     assert.match(await page.textContent('#detail'), new RegExp(`^frame ${FRAMES} of ${FRAMES} · `));
+    // The percentage read on the way (web/lib/progress.mjs): never back, never 25 points at once.
+    const percents = await page.evaluate(() => window.penumbraPage.percents);
+    assert.ok(percents.length > 0 && percents.every((p, i) => i === 0 || (p >= percents[i - 1] &&
+              p - percents[i - 1] <= 25)), `percentages ${percents}`);
     shared.converged = await pixels(page);
     await page.screenshot({ path: join(outDir, 'viewer.png') });
   });

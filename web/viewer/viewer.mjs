@@ -4,6 +4,7 @@
 // context-loss notices to the JS API. window.penumbraPage exposes the viewer and a log of what
 // happened, for the browser tests (web/tests/viewer.test.mjs).
 import Penumbra from './lib/penumbra.mjs';
+import { ProgressMeter } from './lib/progress.mjs';
 
 const DEFAULT_SCENE = 'assets/cornell_box/cornell_box.json';
 const $ = (id) => document.getElementById(id);
@@ -11,7 +12,7 @@ const query = new URLSearchParams(location.search);
 
 // What the tests read: errors shown, progress frames seen (bounded), counters.
 const page = {
-  viewer: null, ready: false, errors: [], progressLog: [], convergedCount: 0,
+  viewer: null, ready: false, errors: [], progressLog: [], percents: [], convergedCount: 0,
   lostCount: 0, restoredCount: 0, sceneName: null, loading: null,
   statusWords: [],  // the status line's first word each time it changes (bounded)
 };
@@ -46,15 +47,19 @@ function showError(e) {
 
 // The progress line in words (issue #42): what the page is doing, how far, how long still.
 // The detail line below it keeps the numbers (image size, time per frame) for the curious.
+const meter = new ProgressMeter();
+
 function statusLine(s) {
   if (page.loading) return `Loading ${page.loading}…`;
   if (!s.total) return 'No scene: open or drop a glTF file';
-  if (s.converged) return 'Done';
-  const percent = Math.min(99, Math.floor((100 * s.frame) / s.total));
-  const left = s.total > s.frame && s.frameMs > 0 ? ((s.total - s.frame) * s.frameMs) / 1000 : 0;
+  const { percent, secondsLeft: left, done } = meter.update(s);
+  if (done) return 'Done';
+  if (page.percents.at(-1) !== percent) page.percents.push(percent);
+  if (page.percents.length > 2000) page.percents.splice(0, 1000);
   // An automatic view's total is an estimate, so the time left is too: say it roughly.
-  const eta = left >= 1 ? `, about ${left < 10 ? left.toFixed(0) : (Math.round(left / 5) * 5).toFixed(0)} s left`
-                        : left > 0 ? ', almost done' : '';
+  const eta = left === null ? '' : left >= 1
+    ? `, about ${left < 10 ? left.toFixed(0) : (Math.round(left / 5) * 5).toFixed(0)} s left`
+    : ', almost done';
   return `Refining: ${percent} %${eta}`;
 }
 
@@ -64,7 +69,7 @@ function renderProgress(viewer) {
   const word = status.split(/[ :]/)[0];
   if (page.statusWords.at(-1) !== word && page.statusWords.length < 50) page.statusWords.push(word);
   $('progress').textContent = status;
-  $('progress-fill').style.width = s.total ? `${(100 * s.frame) / s.total}%` : '0';
+  $('progress-fill').style.width = s.total ? `${s.converged ? 100 : page.percents.at(-1) ?? 0}%` : '0';
   $('progress-fill').classList.toggle('done', s.converged);
   if (!s.total) {
     $('detail').textContent = '';

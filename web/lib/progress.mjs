@@ -1,0 +1,31 @@
+// The refinement progress a person reads (issue #59): a percentage that never goes back and
+// never jumps by more than 25 points at a frame, and a time left only once the view has
+// measured itself (after frame 8). An automatic view's total is an estimate that moves as the
+// view measures itself; the percentage follows it without going back.
+
+export const MAX_STEP = 25;        // points the percentage may rise at one frame
+export const ETA_FROM_FRAME = 9;   // the first frame whose time left is shown
+
+export class ProgressMeter {
+  #percent = 0;
+  #frame = 0;
+
+  // state: { frame, total, converged, frameMs }. Returns { percent, secondsLeft, done }:
+  // percent an integer 0..99 (100 once done), secondsLeft null while not yet believable.
+  update({ frame, total, converged, frameMs }) {
+    if (frame < this.#frame) this.#percent = 0;  // a new view
+    if (converged) {
+      this.#frame = frame;
+      this.#percent = 100;
+      return { percent: 100, secondsLeft: 0, done: true };
+    }
+    if (frame !== this.#frame) {
+      this.#frame = frame;
+      const target = total > 0 ? Math.min(99, Math.floor((100 * frame) / total)) : 0;
+      this.#percent = Math.max(this.#percent, Math.min(target, this.#percent + MAX_STEP));
+    }
+    const left = frame >= ETA_FROM_FRAME && total > frame && frameMs > 0
+      ? ((total - frame) * frameMs) / 1000 : null;
+    return { percent: this.#percent, secondsLeft: left, done: false };
+  }
+}
