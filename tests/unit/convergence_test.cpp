@@ -204,8 +204,9 @@ TEST(ConvergenceTest, TheDecayRateIsTheSlopeOfTheMeasuresLogarithm) {
   // Fewer than five points: drawn towards the prior (half way with three).
   EXPECT_NEAR(decayRate(std::span(noise).first(3)), 0.5 * (0.5 + kDecayPrior), 1e-9);
   // Clamped; too few or unusable points: the prior.
-  EXPECT_EQ(decayRate(std::vector<TrendPoint>{{8, 1.0}, {16, 1.0}, {32, 1.0}, {64, 1.0}, {128, 1.0}}),
-            0.5);
+  EXPECT_EQ(
+      decayRate(std::vector<TrendPoint>{{8, 1.0}, {16, 1.0}, {32, 1.0}, {64, 1.0}, {128, 1.0}}),
+      0.5);
   EXPECT_EQ(decayRate(std::vector<TrendPoint>{{8, 1.0}}), kDecayPrior);
   EXPECT_EQ(decayRate(std::vector<TrendPoint>{{8, 1.0}, {16, NAN}}), kDecayPrior);
 }
@@ -225,7 +226,9 @@ TEST(ConvergenceTest, OneNoisyRegionKeepsTheViewGoing) {
 TEST(ConvergenceTest, ExpectedFramesFollowTheMeasuredRate) {
   // The first checkpoint at or after `frames`.
   const auto all = autoCheckpoints(1024);
-  auto at = [&](double frames) { return *std::lower_bound(all.begin(), all.end(), std::ceil(frames)); };
+  auto at = [&](double frames) {
+    return *std::lower_bound(all.begin(), all.end(), std::ceil(frames));
+  };
   ConvergenceEstimate e = summarizeTiles(std::vector<float>(100, 2.0f), 1.0, 32);
   // Error 2 at 32 against 1, falling as noise: (2 / 1)^2 times 32 frames, counted without the
   // 8-bit rounding (which does not fall).

@@ -16,7 +16,7 @@
 namespace penumbra::progressive {
 namespace {
 
-constexpr int kSize = 128;  // pixels a side
+constexpr int kSize = 128;         // pixels a side
 constexpr int kTiles = kSize / 8;  // tiles a side
 constexpr int kCap = 1024;
 
@@ -56,9 +56,9 @@ class SyntheticRenderer : public FrameRenderer {
     c.against = comparisonCheckpoint(frame, frames);
     const auto now = mean();
     if (c.against > 0) {
-      const auto& before = std::find_if(kept_.begin(), kept_.end(),
-                                        [&](const auto& k) { return k.first == c.against; })
-                               ->second;
+      const auto& before = std::find_if(kept_.begin(), kept_.end(), [&](const auto& k) {
+                             return k.first == c.against;
+                           })->second;
       for (int ty = 0; ty < kSize / kConvergenceTile; ++ty) {
         for (int tx = 0; tx < kSize / kConvergenceTile; ++tx) {
           double sq = 0.0, largest = 0.0;
@@ -106,7 +106,8 @@ int oracleFrame(const Sequence& s) {
       double sq = 0.0;
       for (int y = 0; y < 8; ++y) {
         for (int x = 0; x < 8; ++x) {
-          const size_t i = static_cast<size_t>(((t / kTiles) * 8 + y) * kSize + (t % kTiles) * 8 + x);
+          const size_t i =
+              static_cast<size_t>(((t / kTiles) * 8 + y) * kSize + (t % kTiles) * 8 + x);
           sq += s.sigma[i] * s.sigma[i] * k + s.firstBias[i] * s.firstBias[i] * k * k + 1.0 / 6.0;
         }
       }
@@ -161,7 +162,8 @@ TEST(StoppingRuleTest, ANoisyRegionStopsNearTheOracle) {
     for (int tx = 0; tx < kTiles; ++tx) {
       if ((ty * kTiles + tx) % 16 != 5) continue;
       for (int y = 0; y < 8; ++y) {
-        for (int x = 0; x < 8; ++x) s.sigma[static_cast<size_t>((ty * 8 + y) * kSize + tx * 8 + x)] = 40.0;
+        for (int x = 0; x < 8; ++x)
+          s.sigma[static_cast<size_t>((ty * 8 + y) * kSize + tx * 8 + x)] = 40.0;
       }
     }
   }

@@ -13,6 +13,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "../common/setting_flags.h"
+
 #include "penumbra/gl_context.h"
 #include "penumbra/render_job.h"
 #include "penumbra/renderer.h"
@@ -234,14 +236,9 @@ int main(int argc, char** argv) {
   gLightCache = !noLightCache;
   gQuarterOcclusion = !fullOcclusion;
   gFusedAccumulation = !separateAccumulation;
-  for (const auto& kv : extra) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      std::fprintf(stderr, "penumbra-bench: error: --set expects KEY=VALUE, got '%s'\n",
-                   kv.c_str());
-      return 1;
-    }
-    gExtraSettings.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+  if (std::string bad; !tools::parseSetOptions(extra, gExtraSettings, bad)) {
+    std::fprintf(stderr, "penumbra-bench: error: --set expects KEY=VALUE, got '%s'\n", bad.c_str());
+    return 1;
   }
 
   auto ctx = GlContext::create();

@@ -14,6 +14,22 @@
 
 namespace penumbra::tools {
 
+// `--set KEY=VALUE` options as (key, text) overrides, appended to `out`; the first one without a
+// key and '=' is returned in `bad` (false).
+inline bool parseSetOptions(const std::vector<std::string>& sets,
+                            std::vector<std::pair<std::string, std::string>>& out,
+                            std::string& bad) {
+  for (const auto& kv : sets) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      bad = kv;
+      return false;
+    }
+    out.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+  }
+  return true;
+}
+
 class SettingFlags {
  public:
   // Adds one flag per schema entry that has one (under the group `group`).

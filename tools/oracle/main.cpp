@@ -13,6 +13,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "../common/setting_flags.h"
+
 #include "oracle_metrics.h"
 #include "penumbra/gl_context.h"
 #include "penumbra/image.h"
@@ -62,7 +64,8 @@ Result<oracle::Frame8> display(Renderer& r) {
   f.rgb.reserve(static_cast<size_t>(img->width) * img->height * 3);
   for (size_t i = 0; i < img->pixels.size(); i += 4) {
     for (size_t c = 0; c < 3; ++c) {
-      f.rgb.push_back(static_cast<uint8_t>(std::lround(std::clamp(img->pixels[i + c], 0.0f, 1.0f) * 255.0f)));
+      f.rgb.push_back(
+          static_cast<uint8_t>(std::lround(std::clamp(img->pixels[i + c], 0.0f, 1.0f) * 255.0f)));
     }
   }
   return f;
@@ -80,10 +83,10 @@ struct Row {
   int oracle = 0, stop = 0;
   double oracleS = 0, stopS = 0;
   oracle::Difference atStop;
-  double etaWorst = 0;        // largest factor between estimated and real time left, frame > 8
-  double etaMedian = 0;       // and its median over those frames
-  double grainFirst = 0;      // frame 1's excess grain over the converged image
-  double grainWorst = 0;      // the largest of frames 2..stop
+  double etaWorst = 0;    // largest factor between estimated and real time left, frame > 8
+  double etaMedian = 0;   // and its median over those frames
+  double grainFirst = 0;  // frame 1's excess grain over the converged image
+  double grainWorst = 0;  // the largest of frames 2..stop
   int grainWorstFrame = 0;
 };
 
@@ -119,8 +122,7 @@ Result<Row> measure(const std::string& scene, const Options& o) {
     }
   }
   const oracle::Frame8 last = frames.back();
-  const std::string stem =
-      o.images + "/" + scene.substr(scene.find_last_of('/') + 1) + "_";
+  const std::string stem = o.images + "/" + scene.substr(scene.find_last_of('/') + 1) + "_";
   if (!o.images.empty()) PN_TRY(save(last, stem + "reference.png"));
   std::vector<oracle::Difference> diffs;
   for (const auto& f : frames) diffs.push_back(oracle::difference(f, last));
@@ -160,10 +162,10 @@ Result<Row> measure(const std::string& scene, const Options& o) {
     if (o.trace && c.measured && c.frame == static_cast<int>(t.size())) {
       // The estimate against the truth: this frame against the reference's last.
       const auto truth = oracle::difference(*f, last);
-      std::printf("#   frame %d: estimate %.2f / tiles %.2f (decay %.2f, expected %d), against "
-                  "the reference %.2f / %.2f\n",
-                  c.frame, c.error, c.tileError, c.decay, c.expectedFrames, truth.rms,
-                  truth.tileP99);
+      std::printf(
+          "#   frame %d: estimate %.2f / tiles %.2f (decay %.2f, expected %d), against "
+          "the reference %.2f / %.2f\n",
+          c.frame, c.error, c.tileError, c.decay, c.expectedFrames, truth.rms, truth.tileP99);
     }
   }
   row.stop = (*r)->framesDone();
@@ -188,7 +190,8 @@ Result<Row> measure(const std::string& scene, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"penumbra-oracle: the frame a view looks done against where the automatic view stops"};
+  CLI::App app{
+      "penumbra-oracle: the frame a view looks done against where the automatic view stops"};
   std::vector<std::string> scenes = {"assets/cornell_box/cornell_box.json"};
   std::string size = "640x360";
   Options o;
@@ -203,26 +206,22 @@ int main(int argc, char** argv) {
   std::vector<std::string> extra;
   app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
-  if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 8 ||
-      o.height < 8) {
+  if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 8 || o.height < 8) {
     std::fprintf(stderr, "penumbra-oracle: error: bad size '%s'\n", size.c_str());
     return 1;
   }
-  for (const auto& kv : extra) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      std::fprintf(stderr, "penumbra-oracle: error: --set expects KEY=VALUE, got '%s'\n", kv.c_str());
-      return 1;
-    }
-    o.settings.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+  if (std::string bad; !tools::parseSetOptions(extra, o.settings, bad)) {
+    std::fprintf(stderr, "penumbra-oracle: error: --set expects KEY=VALUE, got '%s'\n",
+                 bad.c_str());
+    return 1;
   }
   auto ctx = GlContext::create();
   if (!ctx) {
     std::fprintf(stderr, "penumbra-oracle: error: %s\n", ctx.message().c_str());
     return 1;
   }
-  std::printf("# %s, %dx%d, reference frame %d\n", (*ctx)->description().c_str(), o.width,
-              o.height, o.frames);
+  std::printf("# %s, %dx%d, reference frame %d\n", (*ctx)->description().c_str(), o.width, o.height,
+              o.frames);
   std::printf(
       "| scene | oracle frame | stop | stop / oracle | time to oracle (s) | time to stop (s) | "
       "stop vs reference: RMS / tile p99 (steps) | estimated time left after frame 8: median / "
@@ -237,11 +236,12 @@ int main(int argc, char** argv) {
       ++failures;
       continue;
     }
-    std::printf("| %s | %d | %d | %.2f | %.2f | %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f (%d) |\n",
-                name.c_str(), row->oracle, row->stop,
-                row->oracle > 0 ? static_cast<double>(row->stop) / row->oracle : 0.0, row->oracleS,
-                row->stopS, row->atStop.rms, row->atStop.tileP99, row->etaMedian, row->etaWorst, row->grainFirst,
-                row->grainWorst, row->grainWorstFrame);
+    std::printf(
+        "| %s | %d | %d | %.2f | %.2f | %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f (%d) |\n",
+        name.c_str(), row->oracle, row->stop,
+        row->oracle > 0 ? static_cast<double>(row->stop) / row->oracle : 0.0, row->oracleS,
+        row->stopS, row->atStop.rms, row->atStop.tileP99, row->etaMedian, row->etaWorst,
+        row->grainFirst, row->grainWorst, row->grainWorstFrame);
     std::fflush(stdout);
   }
   return failures ? 1 : 0;

@@ -27,8 +27,9 @@ Difference difference(const Frame8& a, const Frame8& b) {
   out.rms = std::sqrt(sum / std::max<double>(1.0, static_cast<double>(a.rgb.size())));
   std::vector<double> tiles(tileSum.size());
   for (size_t i = 0; i < tiles.size(); ++i) tiles[i] = std::sqrt(tileSum[i] / tileCount[i]);
-  const size_t k = std::min(tiles.size() - 1,
-                            static_cast<size_t>(std::ceil(0.99 * static_cast<double>(tiles.size()))) - 1);
+  const size_t k =
+      std::min(tiles.size() - 1,
+               static_cast<size_t>(std::ceil(0.99 * static_cast<double>(tiles.size()))) - 1);
   std::nth_element(tiles.begin(), tiles.begin() + static_cast<std::ptrdiff_t>(k), tiles.end());
   out.tileP99 = tiles[k];
   return out;
@@ -56,7 +57,8 @@ double highPass(const Frame8& f, int x, int y, int c) {
     }
   }
   std::nth_element(v.begin(), v.begin() + 4, v.end());
-  return static_cast<double>(f.rgb[(static_cast<size_t>(y) * f.width + x) * 3 + static_cast<size_t>(c)]) -
+  return static_cast<double>(
+             f.rgb[(static_cast<size_t>(y) * f.width + x) * 3 + static_cast<size_t>(c)]) -
          v[4];
 }
 

@@ -14,14 +14,16 @@ struct Frame8 {
 };
 
 struct Difference {
-  double rms = 0;        // over every channel of every pixel, 8-bit steps
-  double tileP99 = 0;    // 99th percentile of the 8x8 tiles' RMS, 8-bit steps
+  double rms = 0;      // over every channel of every pixel, 8-bit steps
+  double tileP99 = 0;  // 99th percentile of the 8x8 tiles' RMS, 8-bit steps
 };
 
 Difference difference(const Frame8& a, const Frame8& b);
 
 // The oracle: within 1/255 RMS of the reference with 99 % of the tiles within 3/255.
-inline bool acceptable(const Difference& d) { return d.rms <= 1.0 && d.tileP99 <= 3.0; }
+inline bool acceptable(const Difference& d) {
+  return d.rms <= 1.0 && d.tileP99 <= 3.0;
+}
 
 // The first frame (1-based) from which every later frame is acceptable; 0 if the last is not.
 int oracleFrame(const std::vector<Difference>& perFrame);

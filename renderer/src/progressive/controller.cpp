@@ -99,7 +99,8 @@ Status Controller::finishFrame(FrameRenderer& renderer) {
   estimate_.decay = decayRate(errorTrend_);
   estimate_.tileDecay = decayRate(tileTrend_);
   stopped_ = estimate_.converged;
-  if (!stopped_ && settings_.skipConvergedTiles && skip_.update(*tiles, threshold, frame.frame, errors)) {
+  if (!stopped_ && settings_.skipConvergedTiles &&
+      skip_.update(*tiles, threshold, frame.frame, errors)) {
     PN_TRY(renderer.skipTiles(skip_.mask()));
   }
   estimate_.skippedTiles =

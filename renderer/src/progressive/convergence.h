@@ -12,8 +12,8 @@
 // converged when the RMS of those estimates over the image is under the threshold and 99 % of
 // the tiles are under three times the threshold (no region left visibly noisy: edges, whose
 // coverage converges as N^-3/4, keep single tiles over it longest). At the default threshold of
-// one 8-bit step that is the stopping oracle's criterion (tools/oracle). GL-free; the renderer draws
-// the tiles (glsl/convergence.frag).
+// one 8-bit step that is the stopping oracle's criterion (tools/oracle). GL-free; the renderer
+// draws the tiles (glsl/convergence.frag).
 #pragma once
 
 #include <cstdint>

@@ -1,8 +1,9 @@
 // Renderer::Impl::measureTiles: an automatic view's convergence measure at a checkpoint
 // (progressive/convergence.h). glsl/convergence.frag compares the displayed image of the
 // running mean with a kept checkpoint's, a texel per tile; the small result is read back, and
-// the displayed image is kept (checkpoint_snapshot.frag) in place of the oldest. skipTiles: adaptive frames, the
-// tiles measured converged marked in the frame's stencil (glsl/tile_mask.frag).
+// the displayed image is kept (checkpoint_snapshot.frag) in place of the oldest. skipTiles:
+// adaptive frames, the tiles measured converged marked in the frame's stencil
+// (glsl/tile_mask.frag).
 #include <algorithm>
 
 #include "gl/errors.h"
@@ -16,8 +17,8 @@ Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
   for (auto [pass, file] : {std::pair{&convergence, "convergence.frag"},
                             std::pair{&checkpointSnapshot, "checkpoint_snapshot.frag"}}) {
     if (*pass) continue;
-    auto made = passes::FullscreenPass::create(library, file, false,
-                                               {{"PN_TILE", std::to_string(tile)}});
+    auto made =
+        passes::FullscreenPass::create(library, file, false, {{"PN_TILE", std::to_string(tile)}});
     if (!made) return made.error();
     pass->emplace(std::move(*made));
   }
