@@ -61,8 +61,9 @@ struct Renderer::Impl : progressive::FrameRenderer {
   std::optional<passes::AccumulatePass> accumulate;
   std::optional<passes::OcclusionPass> occlusionPass;
   std::optional<passes::FullscreenPass> tonemap;
-  passes::EffectChain effects;                        // post effects before tone mapping
-  std::optional<passes::FullscreenPass> convergence;  // made on an automatic view's first use
+  std::optional<passes::FullscreenPass> tonemapFiltered;  // made on first use (an upscale)
+  passes::EffectChain effects;                            // post effects before tone mapping
+  std::optional<passes::FullscreenPass> convergence;      // made on an automatic view's first use
   std::optional<passes::FullscreenPass> checkpointSnapshot;  // likewise
   // The checkpoint whose displayed image each of targets->checkpoints holds (0: none this view).
   std::array<int, progressive::kKeptCheckpoints> checkpointFrames{};
@@ -111,17 +112,24 @@ struct Renderer::Impl : progressive::FrameRenderer {
   // Exposure, tone mapping and sRGB of `radiance` into the bound framebuffer and viewport (the
   // display target, or the canvas); `filtered`: the viewport is larger than the image, which is
   // then interpolated between texels.
-  void drawToneMapped(const gl::Texture2D& radiance, bool filtered = false) {
-    const gl::Program& p = tonemap->begin();
+  Status drawToneMapped(const gl::Texture2D& radiance, bool filtered = false) {
+    if (filtered && !tonemapFiltered) {
+      auto tm =
+          passes::FullscreenPass::create(library, "tonemap.frag", false, {{"PN_FILTERED", "1"}});
+      if (!tm) return tm.error();
+      tonemapFiltered.emplace(std::move(*tm));
+    }
+    const passes::FullscreenPass& pass = filtered ? *tonemapFiltered : *tonemap;
+    const gl::Program& p = pass.begin();
     radiance.bind(0);
     p.set("uRadiance", 0);
-    p.set("uFiltered", filtered ? 1 : 0);
     p.set("uExposureScale", std::exp2(settings.exposure));
     p.set("uToneMapper", static_cast<int>(settings.toneMapper));
-    tonemap->draw();
+    pass.draw();
     // The mean read here is the target the next frame's fused lighting draws into: a browser's
     // GL took every such draw for a feedback loop while it stayed bound (20 % slower frames).
     gl::Texture2D::unbind(0);
+    return {};
   }
 
   // First light (distributeSamples): where the environment alone would give frame 1 less than

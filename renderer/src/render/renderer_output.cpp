@@ -50,7 +50,7 @@ Status Renderer::toneMap() {
   if (!radiance) return radiance.error();
   t.display.framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
-  impl_->drawToneMapped(**radiance);
+  PN_TRY(impl_->drawToneMapped(**radiance));
   return gl::checkError("tone mapping");
 }
 
@@ -95,8 +95,8 @@ Status Renderer::present(const PresentTarget& target) {
   if (!radiance) return radiance.error();
   gl::Framebuffer::bindExternal(target.framebuffer);
   gl::setViewport(target.x, target.y, target.width, target.height);
-  impl_->drawToneMapped(**radiance, target.width > impl_->targets->width ||
-                                        target.height > impl_->targets->height);
+  PN_TRY(impl_->drawToneMapped(
+      **radiance, target.width > impl_->targets->width || target.height > impl_->targets->height));
   return gl::checkError("presenting to framebuffer " + std::to_string(target.framebuffer));
 }
 
