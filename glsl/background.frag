@@ -1,7 +1,7 @@
 // The environment behind the scene, optionally blurred by sampling a rougher prefiltered mip.
 #include "chunks/environment.glsl"
 uniform mat4 uInvViewProj;
-uniform float uBackgroundBlur;  // perceptual roughness of the mip shown
+uniform float uBackgroundBlur;  // perceptual roughness of the mip shown (PN_BLUR)
 uniform float uBackgroundAlpha;  // 1, or a probe capture's distance for the sky
 #if PN_ACCUMULATE
 // The frame's only batch accumulates as it draws (lighting.frag): so does the background, or
@@ -13,6 +13,7 @@ uniform float uBackgroundScale;
 in vec2 vUv;
 out vec4 fragColor;
 
+#if PN_BLUR
 // The environment in world direction `dir` at one mip level, through a cubic B-spline: a
 // blurred background magnifies a small mip (a 64-texel face at blur 0.25 shows 32 texels
 // across 90 degrees), and bilinear filtering shows its texel grid as kinks, streaks from bright
@@ -48,15 +49,20 @@ vec3 bsplineLevel(vec3 dir, float level) {
 
 // The background at perceptual roughness `blur`: between two mips, both filtered.
 vec3 filteredRadiance(vec3 dir, float blur) {
-  // Sharp: one tap, as the environment's own resolution shows it (the filter's four to eight
-  // taps cost a background-only 1280x720 frame on llvmpipe about 20 ms more).
-  if (blur <= 0.0) return envRadiance(dir, 0.0);
   float lod = clamp(blur, 0.0, 1.0) * uEnvMaxMip;
   float level = floor(lod), between = lod - level;
   vec3 r = bsplineLevel(dir, level);
   if (between > 0.0) r = mix(r, bsplineLevel(dir, min(level + 1.0, uEnvMaxMip)), between);
   return r;
 }
+#else
+// Sharp (PN_BLUR 0, a program of its own): one tap, as the environment's own resolution shows
+// it. Not a uniform branch: a software GL ran the filter's four to eight taps too, which cost a
+// 1280x720 frame on llvmpipe 13 to 28 ms of its lighting (issue #59).
+vec3 filteredRadiance(vec3 dir, float blur) {
+  return envRadiance(dir, 0.0);
+}
+#endif
 
 void main() {
   vec4 far = uInvViewProj * vec4(vUv * 2.0 - 1.0, 0.0, 1.0);  // z = 0: finite with an infinite far plane

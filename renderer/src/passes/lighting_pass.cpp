@@ -42,14 +42,13 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   auto depth = library.program("mesh.vert", "prepass.frag");
   if (!depth) return depth.error();
   pass.depthOnly_ = *depth;
-  auto bg = FullscreenPass::create(library, "background.frag", /*farPlane=*/true,
-                                   {{"PN_ACCUMULATE", "0"}});
-  if (!bg) return bg.error();
-  pass.background_.emplace(std::move(*bg));
-  auto bgAcc = FullscreenPass::create(library, "background.frag", /*farPlane=*/true,
-                                      {{"PN_ACCUMULATE", "1"}});
-  if (!bgAcc) return bgAcc.error();
-  pass.backgroundAccumulating_.emplace(std::move(*bgAcc));
+  for (const int accumulate : {0, 1}) {
+    auto bg =
+        FullscreenPass::create(library, "background.frag", /*farPlane=*/true,
+                               {{"PN_ACCUMULATE", std::to_string(accumulate)}, {"PN_BLUR", "0"}});
+    if (!bg) return bg.error();
+    pass.backgrounds_[static_cast<size_t>(accumulate * 2)].emplace(std::move(*bg));
+  }
   auto d = gl::Texture2D::create({.width = 1, .height = 1, .format = gl::PixelFormat::RGBA8});
   if (!d) return d.error();
   const uint8_t black[4] = {0, 0, 0, 0};
@@ -294,9 +293,18 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only
 // uncovered pixels pay for it. `alpha` is 1, or a probe capture's distance for the sky.
-void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
-                                  const CameraMatrices& camera, float blur, float alpha) {
-  const FullscreenPass& pass = b.accumulateFrame > 0 ? *backgroundAccumulating_ : *background_;
+Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
+                                    const CameraMatrices& camera, float blur, float alpha) {
+  const int accumulate = b.accumulateFrame > 0 ? 1 : 0, blurred = blur > 0.0f ? 1 : 0;
+  auto& slot = backgrounds_[static_cast<size_t>(accumulate * 2 + blurred)];
+  if (!slot) {
+    auto made = FullscreenPass::create(
+        *library_, "background.frag", /*farPlane=*/true,
+        {{"PN_ACCUMULATE", std::to_string(accumulate)}, {"PN_BLUR", std::to_string(blurred)}});
+    if (!made) return made.error();
+    slot.emplace(std::move(*made));
+  }
+  const FullscreenPass& pass = *slot;
   const gl::Program& bg = pass.begin(/*depthTest=*/true);
   b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
   bg.set("uInvViewProj", glm::inverse(camera.projection * camera.view));
@@ -308,13 +316,15 @@ void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRo
     setAccumulation(bg, b);
   }
   pass.draw();
+  return {};
 }
 
-void LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
+Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
   // Accumulating, the pixels the scene leaves are drawn whether or not a background is shown.
   if (b.settings->showBackground || b.accumulateFrame > 0) {
-    drawBackground(b, envRotation, *b.camera, b.settings->backgroundBlur, 1.0f);
+    return drawBackground(b, envRotation, *b.camera, b.settings->backgroundBlur, 1.0f);
   }
+  return {};
 }
 
 void LightingPass::setAccumulation(const gl::Program& p, const LightingBatch& b) {
@@ -359,7 +369,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
   if (b.first) {
     for (const CaptureView& view : views) {
       gl::setViewport(view.x, view.y, view.size, view.size);
-      drawBackground(b, envRotation, view.camera, 0.0f, skyDistance);
+      PN_TRY(drawBackground(b, envRotation, view.camera, 0.0f, skyDistance));
     }
   }
   return {};
@@ -500,7 +510,7 @@ Status LightingPass::draw(const LightingBatch& b) {
     if (part) gl::disableScissor();
   }
   if (!b.scene) {
-    if (b.first) drawBackground(b, envRotation);
+    if (b.first) PN_TRY(drawBackground(b, envRotation));
     return {};
   }
   if (b.first) drawDepth(b);
@@ -523,7 +533,7 @@ Status LightingPass::draw(const LightingBatch& b) {
   // frame does not keep, in every batch (the same decisions each time).
   if (b.coverageFrame >= 0)
     PN_TRY(drawByMaterial(pass, *b.scene, b.scene->blended(), opaque, setup));
-  if (b.first) drawBackground(b, envRotation);
+  if (b.first) PN_TRY(drawBackground(b, envRotation));
   if (b.first && b.coverageFrame < 0 && !b.scene->blended().empty()) {
     PN_TRY(drawBlendedSorted(b, pass, setup));
   }

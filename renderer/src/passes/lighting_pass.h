@@ -7,6 +7,7 @@
 // features of the material it draws (built on first use).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <unordered_map>
@@ -157,15 +158,16 @@ class LightingPass {
   Status drawBlendedSorted(const LightingBatch& b, const LightingVariant& v,
                            const std::function<void(const gl::Program&)>& setup);
   Status drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation);
-  void drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
-  void drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
-                      const CameraMatrices& camera, float blur, float alpha);
+  Status drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
+  Status drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
+                        const CameraMatrices& camera, float blur, float alpha);
 
   gl::ShaderLibrary* library_ = nullptr;
   std::unordered_map<uint64_t, gl::Program*> programs_;  // (variant key << 32) | features
   gl::Program* depthOnly_ = nullptr;
-  std::optional<FullscreenPass> background_;
-  std::optional<FullscreenPass> backgroundAccumulating_;  // PN_ACCUMULATE
+  // The background's programs: [PN_ACCUMULATE * 2 + PN_BLUR]; the blurred ones made on first
+  // use (a blur is a setting few views have).
+  std::array<std::optional<FullscreenPass>, 4> backgrounds_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
 };
 
