@@ -17,7 +17,7 @@ export interface Settings {
   /** The most frames an automatic view draws (16..4096, default 1024). */
   maxFrames?: number;
   /** Automatic views stop when the displayed image's estimated RMS error is under this many
-   *  8-bit steps and 99 % of its 8x8 tiles are under four times it (default 1). */
+   *  8-bit steps and 99 % of its 8x8 tiles are under three times it (default 1). */
   convergenceThreshold?: number;
   /** Automatic views: 8x8 tiles measured converged stop being shaded, so later frames go to
    *  the regions still changing (default true). */

@@ -89,10 +89,11 @@ struct FrameStats {
 };
 
 // How far a view is from done. An automatic view (ProgressiveSettings::frames 0) measures its
-// displayed image at checkpoints (frames 8, 16, 32, ...; docs/architecture.md, "Measured
-// convergence") and stops when its displayed image's error, estimated per 8x8 tile from its
-// changes between the last checkpoints, is under convergenceThreshold 8-bit steps (RMS) and
-// that of 99 % of its tiles under four times that.
+// displayed image at checkpoints (frames 2, 4, 6, 8, then about 2^(1/4) apart;
+// docs/architecture.md, "First light and measured convergence") and stops when its displayed
+// image's error against the image at maxFrames, estimated per 8x8 tile from its change since the
+// checkpoint at about half the frames, is under convergenceThreshold 8-bit steps (RMS) and that
+// of 99 % of its tiles under three times that.
 struct ConvergenceInfo {
   bool automatic = false;       // frames is auto
   bool measured = false;        // a checkpoint after the first has been measured in this view
@@ -100,7 +101,7 @@ struct ConvergenceInfo {
   int frame = 0;                // the last measured checkpoint
   double error = 0.0;           // its RMS change over the image (8-bit steps): the estimated error
   double tileError = 0.0;       // its 99th-percentile tile change (RMS, 8-bit steps)
-  double convergedTiles = 0.0;  // the fraction of tiles under four times the threshold
+  double convergedTiles = 0.0;  // the fraction of tiles under three times the threshold
   // The frame by which the view is expected to be done: m; for an automatic view from the
   // error's measured fall (decay), a checkpoint, at most maxFrames (its frame once converged).
   int expectedFrames = 0;

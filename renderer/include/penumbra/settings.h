@@ -24,9 +24,10 @@ struct ProgressiveSettings {
   // image is measured converged (progressive/convergence.h), at most maxFrames.
   int frames = 0;
   int maxFrames = 1024;  // auto's cap
-  // Auto: converged when the displayed image's error (8-bit steps, RMS), estimated from its
-  // changes between the last checkpoints (frames 8, 16, 32, ...), is under this and that of
-  // 99 % of its 8x8 tiles under four times this (progressive/convergence.h).
+  // Auto: converged when the displayed image's error against the image at maxFrames (8-bit
+  // steps, RMS), estimated from its change since the checkpoint at about half the frames, is
+  // under this and that of 99 % of its 8x8 tiles under three times this
+  // (progressive/convergence.h).
   float convergenceThreshold = 1.0f;
   // Auto: adaptive frames. Tiles measured converged stop being shaded and accumulated (a
   // stencil mask), so the remaining frames go to penumbrae, glossy reflections and edges

@@ -72,9 +72,9 @@ double decayRate(std::span<const TrendPoint> trend);
 
 // The change from N/2 to N understates a real render's error where part of it falls slowly (the
 // probe volume keeps filling for hundreds of frames in an interior: a drift the change hardly
-// sees, which the image at the cap no longer has). Measured with tools/oracle: 1.1 put eight
-// views of nine scenes and models nearest their oracle frames, 1.0 and 1.2 fewer
-// (docs/decisions/2026-12-07-stopping-oracle.md).
+// sees, which the image at the cap no longer has). Measured with tools/oracle on nine scenes and
+// models: 1.0 stopped the Cornell box before its oracle frame, 1.2 stopped the product and the
+// glass shelf past 1.5x theirs; 1.1 lies between (docs/decisions/2026-12-07-stopping-oracle.md).
 inline constexpr double kChangeMargin = 1.1;
 // A tile's estimated error (its change scaled to the error, in 8-bit steps) as the displayed
 // 8-bit image shows it: times kChangeMargin, with the variance of two roundings to 8 bits
