@@ -3,6 +3,9 @@
 // the lit floor beside it stays lit. A point light's cube map shades every direction.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
 #include "passes/camera_math.h"
 #include "penumbra/environment.h"
 #include "render_fixture.h"
@@ -84,6 +87,37 @@ TEST_F(PunctualShadowGLTest, SpotLightCastsAShadow) {
   spot.intensity = 20.0f;
   // From (-2, 2.5) the box's top edge at x = 0.5, y = 1 shades the floor to x = 2.17.
   expectShadowBesideTheBox(renderWith(spot), "spot");
+}
+
+// The case reported black but for specks (issue #60): a spot pointing straight down (a node
+// turned -90 degrees about X; its placement is scene_camera_light_test's) with a range beyond
+// the floor lights a disc of the analytic irradiance, fades across the ring between the cone
+// angles and leaves the floor outside dark.
+TEST_F(PunctualShadowGLTest, SpotLightStraightDownLightsItsDisc) {
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {1.5f, 4.0f, 1.0f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.up = {0.0f, 0.0f, -1.0f};
+  spot.innerConeAngle = 0.353f;
+  spot.outerConeAngle = 0.393f;
+  spot.intensity = 1000.0f;
+  spot.range = 25.0f;
+  const Render r = renderWith(spot);
+  (void)writeImage(outputDir() + "/punctual_spot_down.png", r.image);  // to look at
+  // E = I cos / d^2 with the glTF range window (1 - (d/range)^4)^2; L = albedo E / pi.
+  auto expected = [&](glm::vec3 p) {
+    const glm::vec3 v = spot.position - p;
+    const float d = glm::length(v), window = 1.0f - std::pow(d / spot.range, 4.0f);
+    return 0.8f * spot.intensity * (v.y / d) / (d * d) * window * window / glm::pi<float>();
+  };
+  const glm::vec3 centre(1.5f, 0.0f, 1.0f), inside(1.5f, 0.0f, 2.0f), ring(1.5f, 0.0f, -0.56f),
+      outside(1.5f, 0.0f, -1.0f);
+  EXPECT_NEAR(r.at(centre), expected(centre), 0.15f * expected(centre));
+  EXPECT_NEAR(r.at(inside), expected(inside), 0.15f * expected(inside));
+  EXPECT_GT(r.at(ring), 0.02f * expected(centre)) << "the ring between the cones is lit";
+  EXPECT_LT(r.at(ring), 0.9f * expected(ring)) << "and fades";
+  EXPECT_LT(r.at(outside), 0.01f * expected(centre)) << "outside the outer cone is dark";
 }
 
 TEST_F(PunctualShadowGLTest, PointLightCastsAShadow) {

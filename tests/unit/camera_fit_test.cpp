@@ -71,5 +71,75 @@ TEST(CameraFitTest, AutomaticFramingShowsTheWholeSceneInPortrait) {
   }
 }
 
+// A scene of one instanced mesh with these vertices (one triangle fan over them).
+Scene sceneOf(const std::vector<glm::vec3>& vertices, const glm::mat4& world = glm::mat4(1.0f)) {
+  Scene s;
+  Mesh mesh;
+  Primitive p;
+  p.positions = vertices;
+  for (uint32_t i = 1; i + 1 < vertices.size(); ++i)
+    p.indices.insert(p.indices.end(), {0, i, i + 1});
+  for (const glm::vec3& v : vertices) p.bounds.extend(v);
+  mesh.primitives.push_back(p);
+  s.meshes.push_back(mesh);
+  Instance inst;
+  inst.mesh = 0;
+  inst.world = world;
+  s.instances.push_back(inst);
+  for (const glm::vec3& v : vertices) s.bounds.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
+  return s;
+}
+
+// The smallest rectangle holding every vertex in NDC: {min x, min y, max x, max y}.
+glm::vec4 ndcExtent(const CameraMatrices& m, const Scene& s) {
+  glm::vec4 e(1e9f, 1e9f, -1e9f, -1e9f);
+  for (const Instance& inst : s.instances) {
+    for (const Primitive& p : s.meshes[static_cast<size_t>(inst.mesh)].primitives) {
+      for (const glm::vec3& v : p.positions) {
+        const glm::vec2 q = ndc(m, glm::vec3(inst.world * glm::vec4(v, 1.0f)));
+        e = glm::vec4(glm::min(glm::vec2(e), q), glm::max(glm::vec2(e.z, e.w), q));
+      }
+    }
+  }
+  return e;
+}
+
+// model-viewer fills its element with the model; the sphere around the bounds left a flat board
+// or a long car small and an asymmetric model (FlightHelmet) off-centre. The fit: every vertex
+// in view, the binding axis 92 % full, both axes centred, in landscape, square and portrait.
+TEST(CameraFitTest, AutomaticFramingFillsTheViewCentred) {
+  std::vector<glm::vec3> board;  // a flat 8 x 8 board with one tall piece in a corner
+  for (float x : {-4.0f, 4.0f})
+    for (float z : {-4.0f, 4.0f}) board.emplace_back(x, 0.0f, z);
+  board.emplace_back(3.5f, 1.5f, 3.5f);
+  std::vector<glm::vec3> car;  // long along X, low
+  for (int c = 0; c < 8; ++c)
+    car.emplace_back(c & 1 ? 2.2f : -2.2f, c & 2 ? 1.3f : 0.0f, c & 4 ? 0.9f : -0.9f);
+  std::vector<glm::vec3> helmet;  // tall, its mass off the bounds' centre
+  for (int c = 0; c < 8; ++c)
+    helmet.emplace_back(c & 1 ? 0.2f : -0.2f, c & 2 ? 0.6f : 0.0f, c & 4 ? 0.2f : -0.2f);
+  helmet.emplace_back(0.0f, 0.9f, 0.6f);
+  const glm::mat4 turned = glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(0, 1, 0));
+  const std::vector<std::pair<const char*, Scene>> scenes = {
+      {"board", sceneOf(board)}, {"car", sceneOf(car)}, {"helmet", sceneOf(helmet, turned)}};
+  for (const auto& [name, scene] : scenes) {
+    for (const auto& [w, h] : {std::pair{1280, 720}, {500, 500}, {390, 844}}) {
+      const Camera cam = defaultCamera(scene, static_cast<float>(w) / static_cast<float>(h));
+      const glm::vec4 e = ndcExtent(cameraMatrices(cam, w, h, {0, 0}), scene);
+      const std::string at = std::string(name) + " " + std::to_string(w) + "x" + std::to_string(h);
+      EXPECT_GE(e.x, -0.921f) << at;
+      EXPECT_GE(e.y, -0.921f) << at;
+      EXPECT_LE(e.z, 0.921f) << at;
+      EXPECT_LE(e.w, 0.921f) << at;
+      EXPECT_GT(std::max(e.z - e.x, e.w - e.y), 2.0f * 0.9f) << at << ": the model is small";
+      // Centred: in perspective the two sides' slack is equal in the fitting's terms, so the
+      // NDC midpoints sit near 0 (a few per cent of the view for deep models).
+      EXPECT_NEAR(0.5f * (e.x + e.z), 0.0f, 0.06f) << at;
+      EXPECT_NEAR(0.5f * (e.y + e.w), 0.0f, 0.06f) << at;
+      EXPECT_GT(cam.znear, 0.0f) << at;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -41,8 +41,8 @@ TEST(RenderJobTest, SceneFileSettingsThenOverrides) {
 }
 
 TEST(RenderJobTest, DefaultEnvironmentFollowsTheLights) {
-  // A bare glTF: the Cornell box has its own light, so the world is black; the dense model has
-  // none, so it gets the studio.
+  // A bare glTF: the Cornell box has its own area light, so the world is black; the dense model
+  // has no lights, so it gets the studio (punctual lights alone: the test below).
   JobRequest lit;
   lit.scenePath = asset("cornell_box/cornell_box.gltf");
   auto withLights = RenderJob::load(lit);
@@ -94,6 +94,10 @@ TEST(RenderJobTest, WarnsWhenPunctualLightsExceedTheLimit) {
     warned = warned || w.find(std::to_string(count) + " punctual lights") != std::string::npos;
   }
   EXPECT_TRUE(warned) << "no warning about " << count << " punctual lights";
+  // Punctual lights alone (a product file with a key light, as GlamVelvetSofa carries one
+  // directional light) keep the studio, the lights shining on top, as three.js's viewers do.
+  EXPECT_EQ(job->environmentName, "studio");
+  EXPECT_GT(meanRadiance(job->environment), 0.2f);
 }
 
 TEST(RenderJobTest, BadRequestsAreOneLineErrors) {

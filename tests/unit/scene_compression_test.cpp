@@ -1,5 +1,6 @@
 // Compressed geometry: KHR_draco_mesh_compression (encoded here with Draco's encoder) and
 // EXT_meshopt_compression (encoded with meshoptimizer, including the octahedral filter).
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -67,9 +68,13 @@ void expectGridSurface(const Primitive& p, float tolerance) {
 struct DracoFile {
   GltfBuilder builder;
   uint32_t positionId = 0, normalId = 0, uvId = 0;
+  uint32_t jointsId = 0, weightsId = 0;
 };
 
-DracoFile dracoGrid() {
+// The grid, Draco-compressed; `skinWeight` >= 0 adds JOINTS_0 (every vertex on joint 0) and
+// WEIGHTS_0 (that weight on it) inside the compressed data, and a skin whose one joint sits at
+// (0, 0, 3), as the Khronos CesiumMan's Draco variant carries its skin.
+DracoFile dracoGrid(float skinWeight = -1.0f) {
   const Grid g = makeGrid();
   const int faces = static_cast<int>(g.indices.size() / 3);
   draco::TriangleSoupMeshBuilder mb;
@@ -77,7 +82,18 @@ DracoFile dracoGrid() {
   const int pos = mb.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
   const int nrm = mb.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
   const int uv = mb.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+  const bool skinned = skinWeight >= 0.0f;
+  const int jnt =
+      skinned ? mb.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_UINT8) : -1;
+  const int wgt =
+      skinned ? mb.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32) : -1;
+  const uint8_t joint[4] = {0, 0, 0, 0};
+  const float weight[4] = {skinWeight, 0.0f, 0.0f, 0.0f};
   for (int f = 0; f < faces; ++f) {
+    if (skinned) {
+      mb.SetAttributeValuesForFace(jnt, draco::FaceIndex(f), joint, joint, joint);
+      mb.SetAttributeValuesForFace(wgt, draco::FaceIndex(f), weight, weight, weight);
+    }
     const uint32_t* i = &g.indices[static_cast<size_t>(f) * 3];
     mb.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &g.positions[i[0]], &g.positions[i[1]],
                                  &g.positions[i[2]]);
@@ -91,6 +107,10 @@ DracoFile dracoGrid() {
   out.positionId = mesh->attribute(pos)->unique_id();
   out.normalId = mesh->attribute(nrm)->unique_id();
   out.uvId = mesh->attribute(uv)->unique_id();
+  if (skinned) {
+    out.jointsId = mesh->attribute(jnt)->unique_id();
+    out.weightsId = mesh->attribute(wgt)->unique_id();
+  }
 
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
@@ -123,8 +143,25 @@ DracoFile dracoGrid() {
                              {{"POSITION", out.positionId},
                               {"NORMAL", out.normalId},
                               {"TEXCOORD_0", out.uvId}}}}}}}});
-  b.scene({b.node({{"mesh", m}})});
+  if (!skinned) {
+    b.scene({b.node({{"mesh", m}})});
+    return out;
+  }
+  json& prim = b.doc["meshes"][static_cast<size_t>(m)]["primitives"][0];
+  prim["attributes"]["JOINTS_0"] = b.accessor(-1, kUByte, points, "VEC4");
+  prim["attributes"]["WEIGHTS_0"] = b.accessor(-1, kFloat, points, "VEC4");
+  prim["extensions"]["KHR_draco_mesh_compression"]["attributes"]["JOINTS_0"] = out.jointsId;
+  prim["extensions"]["KHR_draco_mesh_compression"]["attributes"]["WEIGHTS_0"] = out.weightsId;
+  const int joint0 = b.node({{"name", "joint"}, {"translation", {0, 0, 3}}});
+  b.push("skins", {{"joints", {joint0}}});
+  b.scene({joint0, b.node({{"mesh", m}, {"skin", 0}})});
   return out;
+}
+
+bool warnsDrawsNothing(const Scene& scene) {
+  return std::ranges::any_of(scene.warnings, [](const std::string& w) {
+    return w.find("draws nothing") != std::string::npos;
+  });
 }
 
 TEST(SceneGltfCompression, DracoCompressedMeshDecodes) {
@@ -145,6 +182,29 @@ TEST(SceneGltfCompression, DracoCompressedMeshDecodes) {
       EXPECT_NEAR(p.uv0[v].y, 1.0f - p.positions[v].y, 2e-3f);
     }
   }
+}
+
+// The skin's JOINTS_0 and WEIGHTS_0 live in the compressed data; read from their (empty)
+// accessors they were zeros and collapsed the mesh to a point: an empty picture, no word.
+TEST(SceneGltfCompression, DracoCompressedSkinPosesTheMesh) {
+  DracoFile file = dracoGrid(1.0f);
+  auto scene = file.builder.load();
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const Primitive& p = scene->meshes.at(0).primitives.at(0);
+  float area = 0.0f;
+  for (size_t t = 0; t < p.indices.size(); t += 3) {
+    area +=
+        0.5f * glm::length(glm::cross(p.positions[p.indices[t + 1]] - p.positions[p.indices[t]],
+                                      p.positions[p.indices[t + 2]] - p.positions[p.indices[t]]));
+  }
+  EXPECT_NEAR(area, 1.0f, 1e-2f);
+  for (const glm::vec3& v : p.positions) EXPECT_NEAR(v.z, 3.0f, 1e-3f);  // on the joint
+  EXPECT_FALSE(warnsDrawsNothing(*scene));
+
+  // Weights of zero (an invalid skin) still collapse it: now with a warning that says so.
+  auto collapsed = dracoGrid(0.0f).builder.load();
+  ASSERT_TRUE(collapsed.ok()) << collapsed.message();
+  EXPECT_TRUE(warnsDrawsNothing(*collapsed));
 }
 
 TEST(SceneGltfCompression, BrokenDracoDataIsAnError) {

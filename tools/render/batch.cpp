@@ -94,6 +94,7 @@ Status render(const BatchJob& job, Session& s, BatchResult& result) {
   result.automatic = c.automatic;
   result.converged = c.converged;
   result.errorEstimate = c.error;
+  result.camera = loaded->camera;
   return {};
 }
 

@@ -261,7 +261,7 @@ export declare class Viewer {
   /**
    * Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), [r, g, b],
    * 'studio' (the built-in neutral studio), or null: forget the environment set here and light
-   * by the rule (black for a scene with lights of its own, else the studio).
+   * by the rule (black for a scene with area lights, else the studio).
    */
   setEnvironment(source: Source | Vec3 | 'studio' | null, options?: { name?: string }): Promise<void>;
   /**

@@ -101,7 +101,7 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, fl
 
 // A built-in environment: "studio" (the neutral studio, as a scene file's "studio") stays for
 // later bare models like a file set through the API; "default" forgets the API's environment
-// and applies the rule (black for a scene with lights of its own, else the studio), which later
+// and applies the rule (black for a scene with area lights, else the studio), which later
 // bare models follow too.
 EMSCRIPTEN_KEEPALIVE const char* pv_set_builtin_environment(const char* name) {
   return guarded([&]() -> json {

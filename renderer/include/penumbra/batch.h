@@ -59,6 +59,9 @@ struct BatchResult {
   bool automatic = false;      // frames "auto": stopped by the convergence estimate
   bool converged = false;      // automatic: the estimate met its criterion before maxFrames
   double errorEstimate = 0.0;  // automatic: estimated RMS error in 8-bit steps
+  // The camera the job rendered with (a file's, or the automatic framing), so another renderer
+  // (Blender, tools/fidelity) can see the same view.
+  Camera camera;
 };
 // A JSON object on one line (no newline at the end).
 std::string batchResultJson(const BatchResult& result);

@@ -311,8 +311,9 @@ Result<Scene> loadGltf(const std::string& path, const LoadOptions& options = {})
 Result<Scene> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& baseDir,
                                  const std::string& name, const LoadOptions& options = {});
 
-// A camera framing the scene's bounds from the front (+Z toward -Z), slightly above.
-Camera defaultCamera(const Scene& scene);
+// A camera framing the scene from the front (+Z toward -Z), slightly above: its vertices fill
+// 92 % of a view of `aspect` (width / height) along the binding axis, centred in it.
+Camera defaultCamera(const Scene& scene, float aspect = 1.0f);
 // Finds a camera by name, or by index when `nameOrIndex` is a number.
 Result<int> findCamera(const Scene& scene, const std::string& nameOrIndex);
 // Finds a KHR_materials_variants variant by name, or by index when `nameOrIndex` is a number;

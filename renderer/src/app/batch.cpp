@@ -166,6 +166,12 @@ std::string batchResultJson(const BatchResult& r) {
       j["converged"] = r.converged;
       j["error_estimate"] = std::round(r.errorEstimate * 1000.0) / 1000.0;
     }
+    const float* m = &r.camera.world[0][0];
+    j["camera"] = {{"world", std::vector<float>(m, m + 16)},  // column-major camera-to-world
+                   {"yfov", r.camera.yfov},
+                   {"aspect", r.camera.aspect},
+                   {"orthographic", r.camera.orthographic},
+                   {"ymag", r.camera.ymag}};
   }
   j["warnings"] = r.warnings;
   // Replace, not throw, on invalid UTF-8 in a file name or message.

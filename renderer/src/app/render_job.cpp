@@ -22,11 +22,14 @@ void EnvironmentCache::put(const std::string& key, Entry entry) {
 
 namespace {
 
-// Kind::Default by the rule: black for a scene with lights of its own, else the studio.
+// Kind::Default by the rule: black for a scene with area lights (an authored, lit interior),
+// else the studio, on top of any punctual lights the file carries (as three.js's and
+// model-viewer's viewers light product files; docs/gltf-support.md, "Lights").
 EnvironmentSpec::Kind resolvedKind(const EnvironmentSpec& spec, const Scene& scene) {
   using Kind = EnvironmentSpec::Kind;
   if (spec.kind != Kind::Default) return spec.kind;
-  return scene.lights.empty() ? Kind::Studio : Kind::None;
+  const bool areaLit = std::ranges::any_of(scene.lights, [](const Light& l) { return l.isArea(); });
+  return areaLit ? Kind::None : Kind::Studio;
 }
 
 }  // namespace
@@ -167,7 +170,8 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   } else if (!job.scene.cameras.empty()) {
     job.camera = job.scene.cameras[0];
   } else {
-    job.camera = defaultCamera(job.scene);
+    job.camera = defaultCamera(job.scene, static_cast<float>(job.settings.width) /
+                                              static_cast<float>(std::max(job.settings.height, 1)));
   }
 
   const std::string& variantName =

@@ -22,28 +22,125 @@ size_t Scene::triangleCount() const {
   return count;
 }
 
-Camera defaultCamera(const Scene& scene) {
-  constexpr float kFov = 0.785398163f;  // 45 degrees vertical
-  glm::vec3 center(0.0f);
-  float radius = 1.0f;
-  if (scene.bounds.valid()) {
-    center = scene.bounds.center();
-    radius = scene.bounds.radius();
-    if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
+namespace {
+
+// What the automatic framing fits: every vertex of every instance while that stays cheap (about
+// a million), else the corners of each instance's primitive bounds, else the scene's bounds.
+std::vector<glm::vec3> framingPoints(const Scene& scene) {
+  constexpr size_t kVertexBudget = size_t{1} << 20;
+  size_t vertices = 0;
+  for (const Instance& inst : scene.instances) {
+    if (inst.mesh < 0 || static_cast<size_t>(inst.mesh) >= scene.meshes.size()) continue;
+    for (const Primitive& p : scene.meshes[static_cast<size_t>(inst.mesh)].primitives) {
+      vertices += p.positions.size();
+    }
   }
-  // The bounding sphere touches the top and bottom of a square view at this distance.
-  const float distance = radius / std::sin(kFov * 0.5f);
+  std::vector<glm::vec3> points;
+  auto corners = [&](const Bounds& b, const glm::mat4& world) {
+    if (!b.valid()) return;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                        (c & 4) ? b.max.z : b.min.z);
+      points.emplace_back(world * glm::vec4(p, 1.0f));
+    }
+  };
+  for (const Instance& inst : scene.instances) {
+    if (inst.mesh < 0 || static_cast<size_t>(inst.mesh) >= scene.meshes.size()) continue;
+    for (const Primitive& p : scene.meshes[static_cast<size_t>(inst.mesh)].primitives) {
+      if (vertices > kVertexBudget) {
+        corners(p.bounds, inst.world);
+        continue;
+      }
+      for (uint32_t i : p.indices)
+        points.emplace_back(inst.world * glm::vec4(p.positions[i], 1.0f));
+    }
+  }
+  std::erase_if(points, [](const glm::vec3& p) {
+    return !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z);
+  });
+  if (points.empty()) corners(scene.bounds, glm::mat4(1.0f));
+  return points;
+}
+
+// The aim's offset along one view axis that centres the points seen from `distance`: where
+// the largest and the smallest projected coordinate (c - s) / (distance - z) cancel. Their sum
+// falls as s grows, so bisection finds it. (The distance's fit centres the binding axis in its
+// own terms; a deep model's other axis needs the projection's.)
+float centringOffset(const std::vector<glm::vec2>& cz, float distance) {
+  float lo = 1e30f, hi = -1e30f;
+  for (const glm::vec2& p : cz) {
+    lo = std::min(lo, p.x);
+    hi = std::max(hi, p.x);
+  }
+  for (int i = 0; i < 32 && lo < hi; ++i) {
+    const float s = 0.5f * (lo + hi);
+    float most = -1e30f, least = 1e30f;
+    for (const glm::vec2& p : cz) {
+      const float q = (p.x - s) / (distance - p.y);
+      most = std::max(most, q);
+      least = std::min(least, q);
+    }
+    (most + least > 0.0f ? lo : hi) = s;
+  }
+  return 0.5f * (lo + hi);
+}
+
+}  // namespace
+
+Camera defaultCamera(const Scene& scene, float aspect) {
+  constexpr float kFov = 0.785398163f;  // 45 degrees vertical
+  // The model fills this share of the view's binding extent, as model-viewer leaves a margin.
+  constexpr float kFill = 0.92f;
+  if (!(aspect > 0.0f) || !std::isfinite(aspect)) aspect = 1.0f;
   // From +Z, raised about 14 degrees so the ground plane of a typical scene is visible.
-  const glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
-  const glm::vec3 eye = center + dir * distance;
+  const glm::vec3 back = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));  // centre -> eye
+  const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0, 1, 0), back));
+  const glm::vec3 up = glm::cross(back, right);
+  const float tanY = std::tan(kFov * 0.5f) * kFill, tanX = tanY * aspect;
+
+  const std::vector<glm::vec3> points = framingPoints(scene);
+  glm::vec3 origin(0.0f);
+  if (scene.bounds.valid()) origin = scene.bounds.center();
+  // A point at lateral offsets (x, y) and depth offset z toward the eye is in view from
+  // distance D when D >= |x| / tanX + z (and the same for y). Shifting the aim by s along an
+  // axis turns the bound into max(A - s/t, B + s/t), least at s = t (A - B) / 2 with value
+  // (A + B) / 2: as tight as the binding axis allows, the aim then centred at that distance.
+  float ax = -1e30f, bx = -1e30f, ay = -1e30f, by = -1e30f, zMax = -1e30f;
+  for (const glm::vec3& p : points) {
+    const glm::vec3 d = p - origin;
+    const float x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, back);
+    ax = std::max(ax, x / tanX + z);
+    bx = std::max(bx, -x / tanX + z);
+    ay = std::max(ay, y / tanY + z);
+    by = std::max(by, -y / tanY + z);
+    zMax = std::max(zMax, z);
+  }
+  float distance = 1.0f / std::sin(kFov * 0.5f);  // an empty scene: a unit sphere's framing
+  glm::vec3 center = origin;
+  if (!points.empty()) {
+    distance = std::max(0.5f * (ax + bx), 0.5f * (ay + by));
+    // A point model (or a degenerate one): back off so something of it is in front.
+    const float extent = std::max(ax + bx, ay + by);
+    distance = std::max(distance, zMax + std::max(extent, 1e-6f) * 0.05f);
+    if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
+    std::vector<glm::vec2> xz(points.size()), yz(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      const glm::vec3 d = points[i] - origin;
+      xz[i] = {glm::dot(d, right), glm::dot(d, back)};
+      yz[i] = {glm::dot(d, up), xz[i].y};
+    }
+    center += right * centringOffset(xz, distance) + up * centringOffset(yz, distance);
+  }
+  const glm::vec3 eye = center + back * distance;
 
   Camera cam;
   cam.name = "default";
   cam.world = glm::inverse(glm::lookAt(eye, center, glm::vec3(0, 1, 0)));
   cam.yfov = kFov;
-  // The bounding sphere fits a square: in a portrait view the horizontal extent is kept.
-  cam.aspect = 1.0f;
-  cam.znear = std::max(distance - radius, distance * 0.01f) * 0.5f;
+  // Fitted to this aspect: a narrower (portrait) viewport keeps the horizontal extent.
+  cam.aspect = aspect;
+  const float nearest = points.empty() ? distance * 0.5f : distance - zMax;
+  cam.znear = std::max(nearest, distance * 0.01f) * 0.5f;
   cam.zfar = 0.0f;
   return cam;
 }

@@ -274,10 +274,12 @@ Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vect
 Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
                                              const std::vector<glm::mat4>& nodeWorld,
                                              LoadContext& ctx);
-// Poses a primitive by its JOINTS_0 and WEIGHTS_0 with `joints` (from jointMatrices): its
-// positions, normals and tangents end up in world space, as glTF defines for skinned meshes.
-Status applySkin(Document& doc, const PrimitiveDesc& pd, const std::vector<glm::mat4>& joints,
-                 Primitive& prim, LoadContext& ctx, const std::string& what);
+// Poses a primitive by its JOINTS_0 and WEIGHTS_0 values (as floats, 4 per vertex, read from
+// plain or Draco-compressed data) with `joints` (from jointMatrices): its positions, normals and
+// tangents end up in world space, as glTF defines for skinned meshes.
+Status applySkin(const std::vector<float>& jointIndices, const std::vector<float>& weights,
+                 const std::vector<glm::mat4>& joints, Primitive& prim, LoadContext& ctx,
+                 const std::string& what);
 
 // ---- lamp_faces.cpp ----
 // Marks instances whose emissive primitives sit on an area light as that light's visible face

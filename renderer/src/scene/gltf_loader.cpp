@@ -225,6 +225,10 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   gltf::markLampFaces(scene, ctx);
   if (scene.instances.empty()) {
     ctx.warn("the scene has no meshes; only the environment will be visible");
+  } else if (scene.triangleCount() == 0 || !scene.bounds.valid() ||
+             !(scene.bounds.radius() > 0.0f)) {
+    ctx.warn("the scene's meshes draw nothing (no triangles with area); only the environment "
+             "will be visible");
   }
   scene.variants = doc.variants;
   scene.warnings = std::move(ctx.warnings);

@@ -202,6 +202,34 @@ Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& pr
   return {};
 }
 
+// Poses a skinned primitive; its JOINTS_0 and WEIGHTS_0 come through `src`, so Draco-compressed
+// ones are read from the decoded mesh (their accessors have no data of their own).
+Status skinPrimitive(AttributeSource& src, const std::vector<glm::mat4>& joints, Primitive& prim,
+                     LoadContext& ctx, const std::string& what) {
+  int components = 0;
+  auto ji = src.get("JOINTS_0", {4}, components);
+  if (!ji.ok()) return ji.error();
+  auto wi = src.get("WEIGHTS_0", {4}, components);
+  if (!wi.ok()) return wi.error();
+  if (!ji->has_value() || !wi->has_value()) return {};  // not skinned itself
+  return applySkin(**ji, **wi, joints, prim, ctx, what);
+}
+
+// A primitive whose triangles all have zero area draws nothing: say so rather than render an
+// empty picture without a word (a skin or morph that collapses it, or data that is not there).
+void warnIfFlat(const Primitive& prim, LoadContext& ctx, const std::string& what) {
+  const auto& p = prim.positions;
+  const auto& idx = prim.indices;
+  for (size_t t = 0; t + 2 < idx.size(); t += 3) {
+    const glm::vec3 e1 = p[idx[t + 1]] - p[idx[t]], e2 = p[idx[t + 2]] - p[idx[t]];
+    if (glm::length(glm::cross(e1, e2)) > 0.0f) return;
+  }
+  if (idx.empty()) return;
+  ctx.warn(what + ": all " + std::to_string(idx.size() / 3) +
+           " triangles have zero area (its positions, skinned or morphed, collapse), so it draws "
+           "nothing");
+}
+
 Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
                                    const std::vector<float>& weights,
                                    const std::vector<glm::mat4>& joints, LoadContext& ctx,
@@ -225,7 +253,7 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
   Primitive prim;
   PN_TRY(readAttributes(src, prim, ctx, what));
   if (!pd.targets.empty()) PN_TRY(applyMorphTargets(doc, pd, weights, prim, ctx, what));
-  if (!joints.empty()) PN_TRY(applySkin(doc, pd, joints, prim, ctx, what));
+  if (!joints.empty()) PN_TRY(skinPrimitive(src, joints, prim, ctx, what));
   const size_t vertexCount = prim.positions.size();
 
   // Index sequence in the primitive's topology.
@@ -261,6 +289,7 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
 
   dropNonFinite(tris, prim, ctx, what);
   prim.indices = std::move(tris);
+  warnIfFlat(prim, ctx, what);
   prim.material = pd.material;
   if (!doc.variants.empty()) {
     prim.variantMaterials.assign(doc.variants.size(), pd.material);

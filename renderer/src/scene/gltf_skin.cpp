@@ -34,29 +34,24 @@ Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
   return out;
 }
 
-Status applySkin(Document& doc, const PrimitiveDesc& pd, const std::vector<glm::mat4>& joints,
-                 Primitive& prim, LoadContext& ctx, const std::string& what) {
-  const auto j = pd.attributes.find("JOINTS_0"), w = pd.attributes.find("WEIGHTS_0");
-  if (j == pd.attributes.end() || w == pd.attributes.end()) return {};  // not skinned itself
+Status applySkin(const std::vector<float>& jointIndices, const std::vector<float>& weights,
+                 const std::vector<glm::mat4>& joints, Primitive& prim, LoadContext& ctx,
+                 const std::string& what) {
   const size_t n = prim.positions.size();
-  for (const auto& [name, accessor] : {*j, *w}) {
-    const AccessorDesc& a = doc.accessors[static_cast<size_t>(accessor)];
-    if (a.components != 4 || a.count != n) {
-      return ctx.error(what + " " + name + ": accessor " + std::to_string(accessor) + " is " +
-                       std::to_string(a.count) + " " + a.type + "; expected a VEC4 per vertex (" +
-                       std::to_string(n) + ")");
+  using Named = std::pair<const char*, const std::vector<float>*>;
+  for (const auto& [name, values] :
+       {Named{"JOINTS_0", &jointIndices}, Named{"WEIGHTS_0", &weights}}) {
+    if (values->size() != 4 * n) {
+      return ctx.error(what + " " + name + ": " + std::to_string(values->size() / 4) +
+                       " values; expected a VEC4 per vertex (" + std::to_string(n) + ")");
     }
   }
-  auto ji = readFloats(doc, j->second, ctx, what + " JOINTS_0");
-  if (!ji.ok()) return ji.error();
-  auto wi = readFloats(doc, w->second, ctx, what + " WEIGHTS_0");
-  if (!wi.ok()) return wi.error();
   for (size_t v = 0; v < n; ++v) {
     glm::mat4 m(0.0f);
     for (size_t k = 0; k < 4; ++k) {
-      const float weight = (*wi)[4 * v + k];
+      const float weight = weights[4 * v + k];
       if (weight == 0.0f) continue;
-      const auto joint = static_cast<size_t>((*ji)[4 * v + k]);
+      const auto joint = static_cast<size_t>(jointIndices[4 * v + k]);
       if (joint >= joints.size()) {
         return ctx.error(what + " JOINTS_0: vertex " + std::to_string(v) + " names joint " +
                          std::to_string(joint) + " of a skin with " +
