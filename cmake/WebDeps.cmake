@@ -33,7 +33,7 @@ add_library(penumbra_web_deps INTERFACE)
 # SYSTEM: third-party headers must not trip our warning set.
 target_include_directories(penumbra_web_deps SYSTEM INTERFACE ${PENUMBRA_WEB_INCLUDE_DIR})
 
-# Release optimisation level, replacing CMake's -O3 (see docs/web.md for measured sizes). The
+# Release optimisation level, replacing CMake's -O3 (see docs/web/measurements.md for measured sizes). The
 # flag also reaches the link step, where emcc runs wasm-opt and the JS minifier at that level.
 # -Os since the core crossed 1.5 MB at -O2 (1,506,536 B); the IBL sources stay at -O2
 # (renderer/CMakeLists.txt).

@@ -1,4 +1,4 @@
-// The path-tracer hand-off page (docs/web.md, "The path-tracer hand-off"): Penumbra renders and
+// The path-tracer hand-off page (docs/web/handoff.md, "The path-tracer hand-off"): Penumbra renders and
 // converges first; then a path tracer (three-gpu-pathtracer, pathtracer.mjs, in a worker:
 // worker.mjs) refines the same view in tiles of a time budget, and the page cross-fades to it
 // when the swap rule (swap.mjs) fires; any camera move brings Penumbra back at once. Uses only

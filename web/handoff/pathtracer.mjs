@@ -1,5 +1,5 @@
 // The hand-off page's path tracer: three.js + three-gpu-pathtracer (WebGLPathTracer) set up to
-// render what Penumbra renders (docs/web.md, "The path-tracer hand-off"):
+// render what Penumbra renders (docs/web/handoff.md, "The path-tracer hand-off"):
 // - the same glTF (three's GLTFLoader), with EXT_lights_area lights as the path tracer's rect
 //   lights (disks as its circular ones) of the same radiance: emission = color x intensity (nits),
 //   one-sided toward the node's local -Z, sized by the node's largest axis scale;

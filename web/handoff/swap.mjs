@@ -1,4 +1,4 @@
-// The hand-off rule and the image measures behind it (docs/web.md, "The path-tracer hand-off").
+// The hand-off rule and the image measures behind it (docs/web/handoff.md, "The path-tracer hand-off").
 // Pure functions on display images: {width, height, data} with RGBA values in [0, 1] (a
 // Float32Array or any array), row 0 at the top. No DOM, no GL: node tests call them directly.
 //

@@ -1,5 +1,5 @@
 // The hand-off page's path tracer in a dedicated worker, drawing into the page's canvas through
-// an OffscreenCanvas (docs/web.md, "The path-tracer hand-off"). Why a worker: WebGL's shader
+// an OffscreenCanvas (docs/web/handoff.md, "The path-tracer hand-off"). Why a worker: WebGL's shader
 // compile is synchronous where KHR_parallel_shader_compile is missing (SwiftShader), and
 // three-gpu-pathtracer's shader takes 45-60 s there; in a worker that wait blocks the worker, not
 // the page's input. tools/build-web bundles this file with three.js and the path tracer

@@ -1,4 +1,4 @@
-// How the viewer adapts to the device (web/lib/penumbra.mjs runs it; docs/web.md, "Adapting
+// How the viewer adapts to the device (web/lib/penumbra.mjs runs it; docs/web/viewer.md, "Adapting
 // to the device", states the rules). Plain arithmetic on measured times, no wasm or DOM, so
 // web/tests/adapt.test.mjs checks it in node.
 //

@@ -1,4 +1,4 @@
-// Types of <penumbra-viewer> (element.mjs, the npm package's entry). docs/web.md lists every
+// Types of <penumbra-viewer> (element.mjs, the npm package's entry). docs/web/api.md lists every
 // attribute and event.
 
 import type { SceneInfo, Viewer } from './penumbra.js';

@@ -1,5 +1,5 @@
 // <penumbra-viewer>: Penumbra as an HTML element, over the JS API (penumbra.mjs), with
-// model-viewer's attribute names where they mean the same thing. docs/web.md lists every
+// model-viewer's attribute names where they mean the same thing. docs/web/api.md lists every
 // attribute and event, with model-viewer's name beside ours where they differ.
 //
 //   <script type="module">import 'penumbra-viewer';</script>

@@ -1,4 +1,4 @@
-// Types of Penumbra's JavaScript API (penumbra.mjs). docs/web.md describes the behaviour.
+// Types of Penumbra's JavaScript API (penumbra.mjs). docs/web/api.md describes the behaviour.
 
 export declare const version: string;
 

@@ -14,7 +14,7 @@
 //
 // Every method that can fail returns a promise that rejects with a PenumbraError whose message
 // is the one-line C++ message; nothing throws out of the frame loop or the event handlers
-// (failures there go to the 'error' event). docs/web.md documents the API.
+// (failures there go to the 'error' event). docs/web/api.md documents the API.
 import createPenumbraViewerModule from './penumbra_viewer.js';
 import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
 import { provideDecoders } from './decoders.mjs';

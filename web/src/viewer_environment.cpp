@@ -1,5 +1,5 @@
-// The web viewer's environment exports (web/lib/penumbra.mjs calls them; docs/web.md): a file
-// staged in the in-memory file system, a large panorama decoded in steps, a uniform sky and the
+// The web viewer's environment exports (web/lib/penumbra.mjs calls them; docs/web/viewer.md): a
+// file staged in the in-memory file system, a large panorama decoded in steps, a uniform sky and the
 // built-in ones. Each returns the viewer's state as JSON, or {error}, as viewer_main.cpp's do.
 #include <emscripten/emscripten.h>
 

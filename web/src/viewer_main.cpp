@@ -1,4 +1,4 @@
-// The wasm side of Penumbra's web viewer (web/lib/penumbra.mjs drives it; docs/web.md).
+// The wasm side of Penumbra's web viewer (web/lib/penumbra.mjs drives it; docs/web/viewer.md).
 //
 // One module instance serves one canvas. JS fetches files and stages them in the module's
 // in-memory file system (pv_write_file), so the renderer's ordinary file loaders resolve a

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Panoramas are prefiltered on the CPU in the page's only thread: small faces and few samples
-// keep that to about a second (docs/web.md has the measurement).
+// keep that to about a second (docs/web/viewer.md has the measurement).
 constexpr int kPanoramaFaceSize = 64;
 constexpr int kPanoramaSamples = 32;
 

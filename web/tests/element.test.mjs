@@ -4,7 +4,7 @@
 // `error` with a one-line message and the element keeps working, loading="lazy" creates nothing
 // and an eager element draws nothing while off-screen, the element sizes like an image and its
 // canvas follows CSS, camera-controls gates the orbit, a poster with reveal="interaction" waits
-// for a click, environment-image and the schema's settings apply as attributes, docs/web.md
+// for a click, environment-image and the schema's settings apply as attributes, docs/web/api.md
 // lists every settings attribute, and variant-name selects a KHR_materials_variants variant.
 //
 // Small on purpose: 160x120 elements (pixelRatio 1 in headless Chromium), the Cornell box and
@@ -342,7 +342,7 @@ test('poster with reveal="interaction": nothing drawn until a click; removed and
   });
 });
 
-test('environment-image and the schema\'s settings as attributes; docs/web.md lists them', { timeout: TEST_MS }, async () => {
+test('environment-image and the schema\'s settings as attributes; docs/web/api.md lists them', { timeout: TEST_MS }, async () => {
   await withTestPage('settings', async (pg) => {
     await pg.evaluate((src) => window.add(`<penumbra-viewer id="s" class="small" src="${src}" frames="8"
       environment-image="neutral" tone-mapping="neutral" occlusion-distance="0.3"
@@ -382,12 +382,12 @@ test('environment-image and the schema\'s settings as attributes; docs/web.md li
     await pg.evaluate(() => document.querySelector('#s').removeAttribute('environment-image'));
     await convergedWith('none');
 
-    // Every setting of the schema has its attribute in docs/web.md's table.
+    // Every setting of the schema has its attribute in docs/web/api.md's table.
     const attrs = await pg.evaluate(() => document.querySelector('#s').viewer.settingsSchema
       .map((e) => window.settingAttribute(e.key)));
-    const docs = readFileSync(join(root, 'docs/web.md'), 'utf8');
+    const docs = readFileSync(join(root, 'docs/web/api.md'), 'utf8');
     const missing = attrs.filter((a) => !docs.includes(`| \`${a}\``));
-    assert.deepEqual(missing, [], 'docs/web.md lists every settings attribute');
+    assert.deepEqual(missing, [], 'docs/web/api.md lists every settings attribute');
   });
 });
 

@@ -16,7 +16,7 @@ import { closeServer, dist, launch, outDir, recordConsole, serve, withTimeout } 
 
 const SIZE = 64;
 // Agreement at the swap, displayed images (scene exposure, PBR Neutral, sRGB). Measured at 64x64:
-// see docs/web.md. The path tracer at the swap still carries noise (the rule lets it take over
+// see docs/web/handoff.md. The path tracer at the swap still carries noise (the rule lets it take over
 // when its noise is half Penumbra's estimated bias). Penumbra matches a 256-sample Cycles render
 // of the Cornell box within 1 % in mean displayed luminance (0.303 against 0.304 at 160x160);
 // the page's path tracer is 11 % darker than Cycles there (its diffuse lobe), and at the swap

@@ -178,7 +178,7 @@ test('a page bundled by esbuild (ESM, no configuration) shows the model', { time
   assert.deepEqual(built.warnings.map((w) => w.text), []);
   assert.deepEqual(readdirSync(out), ['main.js'], 'one bundle');
   // esbuild leaves new URL(..., import.meta.url) as it is: the wasm and the decoders go next to
-  // the bundle (docs/web.md, "The npm package").
+  // the bundle (docs/web/api.md, "The npm package").
   copyFileSync(join(pkgDir, 'penumbra_viewer.wasm'), join(out, 'penumbra_viewer.wasm'));
   cpSync(join(pkgDir, 'decoders'), join(out, 'decoders'), { recursive: true });
   copyFileSync(join(dist, 'assets/compressed/product_draco.glb'), join(out, 'model.glb'));
