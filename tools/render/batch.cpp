@@ -32,6 +32,7 @@ double secondsSince(Clock::time_point t) {
 struct JobLine {
   int number = 0;
   std::string text;
+  std::string error;  // a sequence that cannot be expanded: the job fails with this
 };
 
 // The shard's lines of the job file (blank lines are not jobs).
@@ -44,7 +45,16 @@ Result<std::vector<JobLine>> readJobs(const std::string& path, const BatchShard&
   while (std::getline(in, text)) {
     ++number;
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (shard.contains(job++)) lines.push_back({number, text});
+    // A sequence line is one job per time (expandSequence); its error reaches the results as
+    // the line's own job.
+    auto expanded = expandSequence(text, number);
+    if (!expanded) {
+      if (shard.contains(job++)) lines.push_back({number, text, expanded.message()});
+      continue;
+    }
+    for (const std::string& one : *expanded) {
+      if (shard.contains(job++)) lines.push_back({number, one, {}});
+    }
   }
   if (in.bad()) return makeError("cannot read job file " + path);
   return lines;
@@ -95,6 +105,7 @@ Status render(const BatchJob& job, Session& s, BatchResult& result) {
   result.converged = c.converged;
   result.errorEstimate = c.error;
   result.camera = loaded->camera;
+  result.time = job.request.time;
   return {};
 }
 
@@ -138,7 +149,8 @@ int runBatch(const BatchOptions& o) {
   for (const JobLine& line : *lines) {
     BatchResult result;
     result.line = line.number;
-    auto job = parseBatchJob(line.text, line.number, o.defaults);
+    auto job = line.error.empty() ? parseBatchJob(line.text, line.number, o.defaults)
+                                  : Result<BatchJob>(makeError(line.error));
     if (job) {
       result.scene = job->request.scenePath;
       result.output = job->output;

@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", outPath, "output image (.png displayed, .exr linear)");
   app.add_option("--size", size, "resolution WxH (default from the scene file, else 1280x720)");
   app.add_option("--camera", request.camera, "camera name or index");
+  app.add_option("--animation", request.animation,
+                 "glTF animation to pose the model with: name or index (default: the scene "
+                 "file's, else at rest; --time alone takes the first)");
+  float time = 0.0f;
+  CLI::Option* timeOption =
+      app.add_option("--time", time, "seconds into the animation (its ends hold before and after)");
   app.add_option("--variant", request.variant,
                  "KHR_materials_variants variant: name or index (default: the scene file's, "
                  "else the primitives' own materials)");
@@ -106,6 +112,7 @@ int main(int argc, char** argv) {
       ->group("Batch");
   app.add_flag("--force", batch.force, "batch: render jobs whose output exists")->group("Batch");
   CLI11_PARSE(app, argc, argv);
+  if (timeOption->count() > 0) request.time = time;
   const bool batchMode = !batch.jobsPath.empty();
   if (batchMode && (!request.scenePath.empty() || !outPath.empty())) {
     return fail("--batch takes its scenes and outputs from the job file: no scene or -o");

@@ -4,6 +4,7 @@
 // Renderer is in tools/render.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -20,6 +21,12 @@ struct BatchJob {
   JobRequest request;
   std::string output;  // .png (displayed image), .exr or .hdr (linear radiance)
 };
+
+// A job line that asks for an animation sequence ("times": [t0, t1, ...], or "fps" and "count"
+// with an optional "start" in seconds) as one job line per time: each with its "time" and its
+// output numbered (OUT.png -> OUT_0000.png, ...; a "####" in the name is replaced instead). A
+// line without them comes back as it is; an error names the line.
+Result<std::vector<std::string>> expandSequence(std::string_view text, int line);
 
 // True for the image outputs penumbra-render writes: .png, .exr or .hdr (any case).
 bool isImageOutputPath(const std::string& path);
@@ -59,6 +66,7 @@ struct BatchResult {
   bool automatic = false;      // frames "auto": stopped by the convergence estimate
   bool converged = false;      // automatic: the estimate met its criterion before maxFrames
   double errorEstimate = 0.0;  // automatic: estimated RMS error in 8-bit steps
+  std::optional<float> time;   // the animation time it was posed at, when it asked for one
   // The camera the job rendered with (a file's, or the automatic framing), so another renderer
   // (Blender, tools/fidelity) can see the same view.
   Camera camera;

@@ -55,6 +55,9 @@ struct JobRequest {
   std::vector<std::pair<std::string, std::string>> settings;
   std::string camera;   // name or index; empty: see above
   std::string variant;  // KHR_materials_variants name or index; empty: the scene file's
+  // A glTF animation (name or index) and the time (s) to pose it at; over the scene file's.
+  std::string animation;
+  std::optional<float> time;
   std::optional<EnvironmentSpec> environment;  // replaces the scene file's
   int64_t memoryBudgetBytes = int64_t{2} << 30;
   int maxTextureSize = 4096;

@@ -295,6 +295,13 @@ struct Scene {
   // KHR_materials_variants: the variants' names, in the file's order (a product in several
   // fabrics, say). Loading shows the primitives' own materials; selectVariant switches.
   std::vector<std::string> variants;
+  // The file's animations (name, possibly empty, and end time in seconds), in its order. The
+  // scene is posed at LoadOptions::animationTime of LoadOptions::animation, else at rest.
+  struct Animation {
+    std::string name;
+    float duration = 0.0f;
+  };
+  std::vector<Animation> animations;
   size_t triangleCount() const;
 };
 
@@ -303,6 +310,10 @@ struct LoadOptions {
   int64_t memoryBudgetBytes = int64_t{2} << 30;
   // Textures larger than this on either side are downscaled (by halving) on load.
   int maxTextureSize = 4096;
+  // Pose the scene at `animationTime` seconds of this animation (a name, or an index when a
+  // number; empty: the rest pose). Before its first key and after its last it holds its ends.
+  std::string animation;
+  float animationTime = 0.0f;
 };
 
 // Loads a .gltf (with external or embedded buffers and images) or .glb file.

@@ -4,6 +4,7 @@
 // The settings part is read and written through the settings schema (penumbra/settings.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,6 +49,10 @@ struct SceneFile {
   EnvironmentSpec environment;
   std::string camera;   // name or index; empty: the first camera, else a default one
   std::string variant;  // KHR_materials_variants name or index; empty: the default materials
+  // A glTF animation (name or index) and the time in seconds to pose the model at; empty: at
+  // rest (a time alone poses the first animation, as model-viewer plays the first).
+  std::string animation;
+  std::optional<float> time;
   ProbeVolumeSpec probeVolume;
   RenderSettings settings;
   std::vector<std::string> warnings;  // unknown keys and the like

@@ -77,6 +77,13 @@ Status applyOption(BatchJob& job, const std::string& key, const json& value) {
     job.request.camera = *text;
   } else if (key == "variant") {
     job.request.variant = *text;
+  } else if (key == "animation") {
+    job.request.animation = *text;
+  } else if (key == "time") {
+    if (!value.is_number() || !std::isfinite(value.get<double>())) {
+      return makeError("'time' must be a number of seconds");
+    }
+    job.request.time = value.get<float>();
   } else if (key == "env") {
     auto spec = parseEnvironmentSpec(*text);
     if (!spec) return spec.error();
@@ -101,6 +108,66 @@ Status applyOption(BatchJob& job, const std::string& key, const json& value) {
 }
 
 }  // namespace
+
+Result<std::vector<std::string>> expandSequence(std::string_view text, int line) {
+  json j = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object() || (!j.contains("times") && !j.contains("fps") && !j.contains("count"))) {
+    return std::vector<std::string>{
+        std::string(text)};  // not a sequence (or parseBatchJob's error)
+  }
+  std::vector<double> times;
+  if (auto t = j.find("times"); t != j.end()) {
+    if (!t->is_array() || t->empty() || t->size() > 100000 || j.contains("fps")) {
+      return makeError(
+          lineError(line, "'times' must be a non-empty list of seconds (without 'fps')"));
+    }
+    for (const json& v : *t) {
+      if (!v.is_number() || !std::isfinite(v.get<double>())) {
+        return makeError(lineError(line, "'times' must hold numbers of seconds"));
+      }
+      times.push_back(v.get<double>());
+    }
+  } else {
+    const json fps = j.value("fps", json()), count = j.value("count", json());
+    const json start = j.value("start", json(0.0));
+    if (!fps.is_number() || !(fps.get<double>() > 0.0) || !std::isfinite(fps.get<double>()) ||
+        !count.is_number_integer() || count.get<int64_t>() < 1 || count.get<int64_t>() > 100000 ||
+        !start.is_number() || !std::isfinite(start.get<double>())) {
+      return makeError(lineError(line,
+                                 "a sequence needs 'fps' > 0 and 'count' (1 to 100000), "
+                                 "and a finite 'start'"));
+    }
+    for (int64_t i = 0; i < count.get<int64_t>(); ++i) {
+      times.push_back(start.get<double>() + static_cast<double>(i) / fps.get<double>());
+    }
+  }
+  if (j.contains("time")) {
+    return makeError(lineError(line, "a sequence takes 'times' or 'fps' and 'count', not 'time'"));
+  }
+  const std::string output = j.value("output", std::string());
+  for (const char* key : {"times", "fps", "count", "start"}) j.erase(key);
+  std::vector<std::string> lines;
+  for (size_t i = 0; i < times.size(); ++i) {
+    char number[24];
+    std::snprintf(number, sizeof number, "%04zu", i);
+    std::string out = output;
+    if (const size_t hashes = out.find("####"); hashes != std::string::npos) {
+      out.replace(hashes, 4, number);
+    } else {
+      const size_t dot = out.find_last_of('.');
+      const size_t slash = out.find_last_of("/\\");
+      const size_t at = dot == std::string::npos || (slash != std::string::npos && dot < slash)
+                            ? out.size()
+                            : dot;
+      out.insert(at, std::string("_") + number);
+    }
+    json one = j;
+    one["time"] = times[i];
+    if (!output.empty()) one["output"] = out;
+    lines.push_back(one.dump());
+  }
+  return lines;
+}
 
 bool isImageOutputPath(const std::string& path) {
   const std::string e = detail::lowerExtension(path);
@@ -166,6 +233,7 @@ std::string batchResultJson(const BatchResult& r) {
       j["converged"] = r.converged;
       j["error_estimate"] = std::round(r.errorEstimate * 1000.0) / 1000.0;
     }
+    if (r.time) j["time"] = *r.time;
     const float* m = &r.camera.world[0][0];
     j["camera"] = {{"world", std::vector<float>(m, m + 16)},  // column-major camera-to-world
                    {"yfov", r.camera.yfov},

@@ -146,6 +146,10 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   LoadOptions lo;
   lo.memoryBudgetBytes = request.memoryBudgetBytes;
   lo.maxTextureSize = request.maxTextureSize;
+  lo.animation = !request.animation.empty() ? request.animation : job.sceneFile.animation;
+  const std::optional<float> time = request.time ? request.time : job.sceneFile.time;
+  if (lo.animation.empty() && time) lo.animation.assign(1, '0');  // a time alone: the first one
+  lo.animationTime = time.value_or(0.0f);
   auto scene = loadGltf(job.sceneFile.gltfPath, lo);
   if (!scene) return scene.error();
   job.scene = std::move(*scene);
@@ -170,8 +174,17 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   } else if (!job.scene.cameras.empty()) {
     job.camera = job.scene.cameras[0];
   } else {
-    job.camera = defaultCamera(job.scene, static_cast<float>(job.settings.width) /
-                                              static_cast<float>(std::max(job.settings.height, 1)));
+    const float aspect = static_cast<float>(job.settings.width) /
+                         static_cast<float>(std::max(job.settings.height, 1));
+    job.camera = defaultCamera(job.scene, aspect);
+    if (!lo.animation.empty()) {
+      // Framed at rest, as a viewer frames a model once at load: every time of an animation
+      // sequence gets the same camera, not one that follows the pose's bounds.
+      LoadOptions rest = lo;
+      rest.animation.clear();
+      if (auto atRest = loadGltf(job.sceneFile.gltfPath, rest))
+        job.camera = defaultCamera(*atRest, aspect);
+    }
   }
 
   const std::string& variantName =

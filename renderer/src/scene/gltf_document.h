@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -135,6 +136,12 @@ struct NodeDesc {
   int punctualLight = -1;   // KHR_lights_punctual
   bool lightProxy = false;  // extras.area_light_proxy: the visible face of an area light
   glm::mat4 local{1.0f};
+  // The parts `local` is made of (an animation replaces them): or a matrix, which animations
+  // may not target.
+  bool hasMatrix = false;
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
   // EXT_mesh_gpu_instancing: accessors of the instances' TRANSLATION, ROTATION and SCALE
   // (-1: none); `instanced` when the node has the extension at all.
   bool instanced = false;
@@ -142,6 +149,24 @@ struct NodeDesc {
   // The morph weights of this node's mesh (replacing the mesh's own when present).
   std::optional<std::vector<float>> weights;
   int skin = -1;
+};
+
+struct AnimationDesc {
+  enum class Interpolation { Linear, Step, CubicSpline };
+  enum class Path { Translation, Rotation, Scale, Weights };
+  struct Sampler {
+    int input = -1, output = -1;  // accessors: key times (s), values
+    Interpolation interpolation = Interpolation::Linear;
+  };
+  struct Channel {
+    int sampler = -1;
+    int node = -1;  // -1: no node (KHR_animation_pointer): ignored
+    Path path = Path::Translation;
+    bool known = true;  // a path other than the four above: ignored
+  };
+  std::string name;
+  std::vector<Sampler> samplers;
+  std::vector<Channel> channels;
 };
 
 struct SkinDesc {
@@ -223,6 +248,7 @@ struct Document {
   std::vector<LightDesc> areaLights;
   std::vector<LightDesc> punctualLights;
   std::vector<SkinDesc> skins;
+  std::vector<AnimationDesc> animations;
   std::vector<std::string> variants;  // KHR_materials_variants (root extension)
 
   // Buffer contents (after loadBuffers): spans into `ownedBuffers` or into the caller's GLB
@@ -267,6 +293,15 @@ Result<ViewBytes> viewBytes(Document& doc, int view, LoadContext& ctx);
 // the targets carry them. Extra weights or targets beyond the shorter list are ignored.
 Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vector<float>& weights,
                          Primitive& prim, LoadContext& ctx, const std::string& what);
+
+// ---- gltf_animation.cpp ----
+// The end of animation `animation` (its last key time), in seconds.
+float animationDuration(Document& doc, int animation, LoadContext& ctx);
+// Poses the document at `time` seconds of animation `animation`: its channels replace their
+// nodes' translation, rotation and scale (and `local`) or morph weights.
+Status poseAnimation(Document& doc, int animation, float time, LoadContext& ctx);
+// A node's local matrix from its translation, rotation and scale.
+glm::mat4 composeTrs(const NodeDesc& node);
 
 // ---- gltf_skin.cpp ----
 // Each joint's matrix of skin `skin` (its node's world transform times its inverse bind

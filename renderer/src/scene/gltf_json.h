@@ -223,5 +223,8 @@ struct Document;
 struct LoadContext;
 void parseMaterials(Parser& p, const json& root, Document& doc, LoadContext& ctx,
                     size_t textureCount);
+// Parses the 'animations' array into doc.animations (gltf_animation.cpp).
+void parseAnimations(Parser& p, const json& root, Document& doc, size_t accessorCount,
+                     size_t nodeCount);
 
 }  // namespace penumbra::gltf

@@ -4,6 +4,8 @@
 // library throws (nlohmann, bad_alloc) is caught at this boundary.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string_view>
@@ -128,6 +130,25 @@ std::vector<glm::mat4> worldTransforms(const Document& doc, const std::vector<in
   return world;
 }
 
+// The animation named `nameOrIndex` (a name first, then an index); the error lists them.
+Result<int> findAnimation(const std::vector<Scene::Animation>& animations,
+                          const std::string& nameOrIndex, const LoadContext& ctx) {
+  for (size_t i = 0; i < animations.size(); ++i) {
+    if (animations[i].name == nameOrIndex) return static_cast<int>(i);
+  }
+  char* end = nullptr;
+  const long index = std::strtol(nameOrIndex.c_str(), &end, 10);
+  if (end && *end == '\0' && index >= 0 && static_cast<size_t>(index) < animations.size()) {
+    return static_cast<int>(index);
+  }
+  if (animations.empty()) return ctx.error("no animation '" + nameOrIndex + "': the file has none");
+  std::string list;
+  for (size_t i = 0; i < animations.size(); ++i) {
+    list += (i ? ", " : "") + std::to_string(i) + ": '" + animations[i].name + "'";
+  }
+  return ctx.error("no animation '" + nameOrIndex + "'; available: " + list);
+}
+
 Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
                    const std::string& name, const LoadOptions& options) {
   LoadContext ctx;
@@ -145,6 +166,19 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   PN_TRY(gltf::loadBuffers(doc, container->bin, ctx));
   std::vector<int> parent;
   PN_TRY(checkNodeGraph(doc, parent, ctx));
+  std::vector<Scene::Animation> animations;
+  for (size_t a = 0; a < doc.animations.size(); ++a) {
+    animations.push_back(
+        {doc.animations[a].name, gltf::animationDuration(doc, static_cast<int>(a), ctx)});
+  }
+  if (!options.animation.empty()) {
+    auto index = findAnimation(animations, options.animation, ctx);
+    if (!index.ok()) return index.error();
+    if (!std::isfinite(options.animationTime)) {
+      return ctx.error("animation time must be a finite number of seconds");
+    }
+    PN_TRY(gltf::poseAnimation(doc, *index, options.animationTime, ctx));
+  }
 
   std::vector<int> roots;
   if (doc.scene >= 0 || !doc.scenes.empty()) {
@@ -227,10 +261,12 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     ctx.warn("the scene has no meshes; only the environment will be visible");
   } else if (scene.triangleCount() == 0 || !scene.bounds.valid() ||
              !(scene.bounds.radius() > 0.0f)) {
-    ctx.warn("the scene's meshes draw nothing (no triangles with area); only the environment "
-             "will be visible");
+    ctx.warn(
+        "the scene's meshes draw nothing (no triangles with area); only the environment "
+        "will be visible");
   }
   scene.variants = doc.variants;
+  scene.animations = std::move(animations);
   scene.warnings = std::move(ctx.warnings);
   return scene;
 }

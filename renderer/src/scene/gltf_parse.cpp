@@ -328,22 +328,18 @@ void parseNodes(Parser& p, const json& root, Document& doc, [[maybe_unused]] Loa
     }
     float m[16];
     if (p.numbers<16>(o, "matrix", path, m)) {
+      n.hasMatrix = true;
       n.local = glm::mat4(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11],
                           m[12], m[13], m[14], m[15]);
     } else {
-      const glm::vec3 t = p.vec<3>(o, "translation", path, glm::vec3(0.0f));
+      n.translation = p.vec<3>(o, "translation", path, glm::vec3(0.0f));
       const glm::vec4 r = p.vec<4>(o, "rotation", path, glm::vec4(0, 0, 0, 1));
-      const glm::vec3 s = p.vec<3>(o, "scale", path, glm::vec3(1.0f));
+      n.scale = p.vec<3>(o, "scale", path, glm::vec3(1.0f));
       // glTF stores quaternions as (x, y, z, w); glm::quat's constructor takes w first.
       glm::quat q(r.w, r.x, r.y, r.z);
       const float len = glm::length(q);
-      q = len > 0.0f ? q / len : glm::quat(1, 0, 0, 0);
-      glm::mat4 local = glm::mat4_cast(q);
-      local[0] *= s.x;
-      local[1] *= s.y;
-      local[2] *= s.z;
-      local[3] = glm::vec4(t, 1.0f);
-      n.local = local;
+      n.rotation = len > 0.0f ? q / len : glm::quat(1, 0, 0, 0);
+      n.local = composeTrs(n);
     }
     if (const json* ext = p.object(o, "extensions", path)) {
       if (const json* a = p.object(*ext, "EXT_lights_area", path + ".extensions")) {
@@ -563,6 +559,7 @@ Result<Document> parseDocument(std::string_view text, LoadContext& ctx) {
   parseSamplers(p, root, doc, ctx, count);
 
   parseCameras(p, root, doc, ctx, count);
+  parseAnimations(p, root, doc, count.accessors, count.nodes);
 
   if (p.failed()) return ctx.error(p.error());
   return doc;

@@ -259,8 +259,8 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   SceneFile sf;
   RenderSettings& s = sf.settings;
   std::set<std::string> topLevel = groupKeys("");
-  topLevel.insert({"gltf", "environment", "camera", "variant", "resolution", "background",
-                   "progressive", "probeVolume", "$schema", "comment"});
+  topLevel.insert({"gltf", "environment", "camera", "variant", "animation", "time", "resolution",
+                   "background", "progressive", "probeVolume", "$schema", "comment"});
   warnUnknown(doc, topLevel, "the scene file", sf.warnings);
   auto fail = [&](const Error& e) { return makeError(name + ": " + e.message); };
 
@@ -272,8 +272,10 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
   if (auto it = doc.find("environment"); it != doc.end()) {
     PN_TRY(readEnvironment(*it, baseDir, name, sf));
   }
-  for (const char* key : {"camera", "variant"}) {
-    std::string& out = std::string(key) == "camera" ? sf.camera : sf.variant;
+  for (const char* key : {"camera", "variant", "animation"}) {
+    std::string& out = std::string(key) == "camera"    ? sf.camera
+                       : std::string(key) == "variant" ? sf.variant
+                                                       : sf.animation;
     auto it = doc.find(key);
     if (it == doc.end()) continue;
     if (it->is_string()) {
@@ -286,6 +288,13 @@ Result<SceneFile> parseSceneJson(const std::string& text, const std::string& bas
     } else {
       return makeError(name + ": '" + key + "' must be a name or an index");
     }
+  }
+  if (auto it = doc.find("time"); it != doc.end()) {
+    if (!it->is_number() || !std::isfinite(it->get<double>()) ||
+        std::fabs(it->get<double>()) > 1e7) {
+      return makeError(name + ": 'time' must be a number of seconds");
+    }
+    sf.time = it->get<float>();
   }
   if (auto it = doc.find("resolution"); it != doc.end()) {
     if (!it->is_array() || it->size() != 2) {
@@ -335,6 +344,8 @@ std::string sceneFileJson(const SceneFile& sf) {
   }
   if (!sf.camera.empty()) doc["camera"] = sf.camera;
   if (!sf.variant.empty()) doc["variant"] = sf.variant;
+  if (!sf.animation.empty()) doc["animation"] = sf.animation;
+  if (sf.time) doc["time"] = *sf.time;
   const ProbeVolumeSpec& pv = sf.probeVolume;
   if (pv.hasBox || pv.counts != glm::ivec3(0)) {
     json p = json::object();
