@@ -167,9 +167,11 @@ void occlusionSamples(Layers L, out vec3 diffuseDelta, inout vec3 prefiltered,
   vec4 ray = texelFetch(uOcclusion, clamp(pick, ivec2(0), textureSize(uOcclusion, 0) - 1), 0);
   vec4 ownRay = texelFetch(uOcclusion, own, 0);
   if (abs(abs(ray.a) - gViewDepth) >= gRayTolerance) ray = ownRay;
-  if (ray.a > 0.0 && abs(ray.a - gViewDepth) < gRayTolerance) {
+  // A miss's correction is zero unless the early frames' filter (occlusion_filter.frag) mixed
+  // its neighbours' into it: added either way, on this surface.
+  if (abs(abs(ray.a) - gViewDepth) < gRayTolerance) {
     diffuseDelta = ray.rgb * PI;
-    diffuseHit = true;
+    diffuseHit = ray.a > 0.0;
   }
 #if PN_BROAD_LOBE
   // A dielectric's broad specular lobe (gpu_scene.h materialFeatures) is occluded like the

@@ -50,6 +50,8 @@ export interface Settings {
   probesPerFrame?: number;
   /** Largest radiance a screen-space indirect sample brings back (0 = no limit; default 10). */
   indirectClamp?: number;
+  /** Early frames' diffuse rays averaged with their neighbours' on the same surface, fading to none by this frame (less grain than one ray a pixel); 0 off. Default 16. */
+  rayFilterFrames?: number;
   /** Shadow-map samples per area light; 0 = automatic. */
   lightSamples?: number;
   shadowMapSize?: number;

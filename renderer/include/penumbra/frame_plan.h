@@ -23,6 +23,9 @@ struct FramePlan {
   bool occlusion = false;      // evaluate progressive occlusion (needs the prepass)
   bool renderPrepass = false;  // (re)render the depth and normal prepass before this frame
   glm::vec2 sequence{0.0f};    // this frame's low-discrepancy point for occlusion sampling
+  // The weight of the neighbouring blocks' diffuse rays against the pixel's own (0: its own
+  // alone): 1 in frame 2, fading to 0 by ProgressiveSettings::rayFilterFrames.
+  float rayFilter = 0.0f;
   glm::vec2 skyPoint{0.0f};    // this frame's point for choosing its sky-shadow direction
   // The frame ends a block of the plan (progressive/distributor.h): every light carries its
   // full energy in the mean, which an automatic view measures for convergence here.

@@ -56,6 +56,10 @@ struct ProgressiveSettings {
   // that finds a sun highlight on a mirror ball would otherwise leave a firefly. 10, as the
   // default indirect clamp of Cycles, the reference the evaluation compares against.
   float indirectClamp = 10.0f;
+  // Early frames show their diffuse rays through an edge-aware filter over the neighbouring
+  // blocks' rays (same depth and normal), its weight fading to none by this frame: a single
+  // ray per pixel made frames 2-8 grainier than frame 1 (issue #59). 0: off.
+  int rayFilterFrames = 16;
   // Angular diameter of directional lights in degrees: their shadow-map samples spread over
   // it, so shadow edges soften with distance as under the sun (0.53 degrees).
   float directionalAngle = 0.53f;

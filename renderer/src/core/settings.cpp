@@ -138,6 +138,11 @@ const SettingInfo kSchema[] = {
      1e9, false, false, false, true,
      "largest radiance one screen-space indirect sample brings back (0 = no limit)",
      PN_FIELD(progressive.indirectClamp, float)},
+    {"rayFilterFrames", "progressive", "rayFilterFrames", "--ray-filter-frames", SettingType::Int,
+     0, 1024, false, false, false, true,
+     "early frames' diffuse rays are averaged with their neighbours' on the same surface, the "
+     "neighbours' weight fading to none by this frame (less grain than one ray a pixel; 0 off)",
+     PN_FIELD(progressive.rayFilterFrames, int)},
     {"directionalAngle", "progressive", "directionalAngle", "--directional-angle",
      SettingType::Float, 0, 30, false, false, false, true,
      "angular diameter of directional lights in degrees (soft shadow edges; 0.53 = the sun)",

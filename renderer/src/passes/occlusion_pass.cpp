@@ -1,6 +1,7 @@
 #include "passes/occlusion_pass.h"
 
 #include <array>
+#include <utility>
 
 #include "gpu/gpu_environment.h"
 #include "passes/limits.h"
@@ -20,7 +21,9 @@ Result<FullscreenPass> tracePass(gl::ShaderLibrary& library, bool probes, bool p
 Result<OcclusionPass> OcclusionPass::create(gl::ShaderLibrary& library) {
   auto pass = tracePass(library, false, false);
   if (!pass) return pass.error();
-  return OcclusionPass(library, std::move(*pass));
+  auto filter = FullscreenPass::create(library, "occlusion_filter.frag", false, {});
+  if (!filter) return filter.error();
+  return OcclusionPass(library, std::move(*pass), std::move(*filter));
 }
 
 glm::ivec2 OcclusionPass::blockOffset(int frame) {
@@ -71,7 +74,22 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
   p.set("uBlock", in.block);
   p.set("uBlockOffset", in.block == 2 ? glm::vec2(blockOffset(in.frame)) : glm::vec2(0.0f));
   pass.draw();
+  if (in.filter > 0.0f) filter(in);
   return {};
+}
+
+void OcclusionPass::filter(const OcclusionInputs& in) {
+  RenderTargets& t = *in.targets;
+  t.occlusionFiltered.framebuffer.bind();
+  const gl::Program& p = filter_.begin();
+  t.occlusion.color.bind(kUnitOcclusion);
+  t.prepass.color.bind(kUnitPrepass);
+  p.set("uRays", kUnitOcclusion);
+  p.set("uPrepass", kUnitPrepass);
+  p.set("uBlock", in.block);
+  p.set("uStrength", in.filter);
+  filter_.draw();
+  std::swap(t.occlusion, t.occlusionFiltered);  // the lighting pass reads t.occlusion
 }
 
 }  // namespace penumbra::passes

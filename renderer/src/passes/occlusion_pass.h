@@ -35,6 +35,7 @@ struct OcclusionInputs {
   glm::vec4 viewOrigin{0.0f, 0.0f, 0.0f, 1.0f};  // CameraMatrices::viewOrigin
   glm::vec2 sequence{0.0f};                      // the frame's low-discrepancy point
   int frame = 2;                                 // picks the pixel of each block
+  float filter = 0.0f;  // the neighbouring blocks' weight (FramePlan::rayFilter); 0: none
   int block = 2;  // 2: a ray per 2x2 block; 1: per pixel (the A/B reference)
   float occlusionDistance = 1.0f;
   bool indirect = true;  // screen-space indirect light: the hit's radiance
@@ -58,10 +59,13 @@ class OcclusionPass {
   static glm::ivec2 blockOffset(int frame);
 
  private:
-  OcclusionPass(gl::ShaderLibrary& library, FullscreenPass pass)
-      : library_(&library), pass_(std::move(pass)) {}
+  OcclusionPass(gl::ShaderLibrary& library, FullscreenPass pass, FullscreenPass filter)
+      : library_(&library), pass_(std::move(pass)), filter_(std::move(filter)) {}
+  // The early frames' edge-aware average of the rays (glsl/occlusion_filter.frag).
+  void filter(const OcclusionInputs& in);
   gl::ShaderLibrary* library_;
-  FullscreenPass pass_;  // without the probe volume
+  FullscreenPass pass_;    // without the probe volume
+  FullscreenPass filter_;  // occlusion_filter.frag
   // With it, without and with the per-view cache's weights: built when first needed.
   std::array<std::unique_ptr<FullscreenPass>, 2> probesPass_;
 };

@@ -104,7 +104,10 @@ Status RenderTargets::ensureOcclusion(int block) {
   if (occlusion.color && occlusionBlock == block) return {};
   auto t = makeColor(occlusionWidth(block), occlusionHeight(block), prepassFormat, nullptr);
   if (!t) return makeError("occlusion target: " + t.message());
+  auto f = makeColor(occlusionWidth(block), occlusionHeight(block), prepassFormat, nullptr);
+  if (!f) return makeError("occlusion target: " + f.message());
   occlusion = std::move(*t);
+  occlusionFiltered = std::move(*f);
   occlusionBlock = block;
   return {};
 }

@@ -128,6 +128,12 @@ void distributeBlock(std::vector<FramePlan>& plan, const ProgressiveSettings& s,
 
 }  // namespace
 
+float rayFilterWeight(int frame, int fadeFrames) {
+  if (frame < 2 || fadeFrames < 2) return 0.0f;
+  const float t = static_cast<float>(frame - 2) / static_cast<float>(fadeFrames - 1);
+  return std::clamp(1.0f - t, 0.0f, 1.0f);
+}
+
 std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
                                          const std::vector<LightInfo>& lights, bool firstLight) {
   const int m = std::max(1, planFrames(s));
@@ -138,6 +144,7 @@ std::vector<FramePlan> distributeSamples(const ProgressiveSettings& s,
     f.totalFrames = m;
     f.jitter = jitter(f.frame, s.seed);
     f.occlusion = f.frame >= 2;
+    f.rayFilter = rayFilterWeight(f.frame, s.rayFilterFrames);
     f.renderPrepass = f.frame == 2;
     glm::vec2 seq = r2(static_cast<uint32_t>(k)) + seedOffset(s.seed, 3);
     f.sequence = seq - glm::floor(seq);

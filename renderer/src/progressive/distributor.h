@@ -42,6 +42,11 @@ std::vector<int> autoCheckpoints(int cap);
 // carry it (firstLight) they start at frame 2, after frame 1's first light.
 int directStartFrame(int frames, float directDelay, bool firstLight = false);
 
+// The weight of the neighbouring blocks' diffuse rays in frame `frame` (FramePlan::rayFilter):
+// 1 in frame 2 (the first with rays), falling linearly to 0 at frame fadeFrames + 1; 0 where
+// fadeFrames < 2 (off).
+float rayFilterWeight(int frame, int fadeFrames);
+
 // The whole plan, up to planFrames(settings): element k is frame k + 1. firstLight: the
 // scene's own lights carry it (Renderer: the environment would give frame 1 less than half of
 // the light), so frame 1 evaluates every light from its centre with weight 1, and the rest of

@@ -188,6 +188,7 @@ std::function<Status()> Renderer::Impl::unitFor(const progressive::FrameStep& st
                                      .viewOrigin = still.viewOrigin,
                                      .sequence = pending.plan.sequence,
                                      .frame = pending.plan.frame,
+                                     .filter = pending.plan.rayFilter,
                                      .block = options.quarterOcclusion ? 2 : 1,
                                      .occlusionDistance = occlusionDistance,
                                      .indirect = ps.screenSpaceIndirect,
