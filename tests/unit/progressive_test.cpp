@@ -437,5 +437,23 @@ TEST(ControllerTest, AFailedPartDropsTheFrame) {
   EXPECT_EQ(c.framesDone(), 0);
 }
 
+// The early frames' ray filter: full in frame 2 (the first with rays), none in frame 1 and from
+// fadeFrames + 1 on, falling in between; the plan carries it; 0 turns it off.
+TEST(ProgressivePlan, RayFilterFadesOverTheEarlyFrames) {
+  EXPECT_EQ(rayFilterWeight(1, 16), 0.0f);
+  EXPECT_EQ(rayFilterWeight(2, 16), 1.0f);
+  EXPECT_GT(rayFilterWeight(9, 16), 0.0f);
+  EXPECT_LT(rayFilterWeight(9, 16), 1.0f);
+  EXPECT_GT(rayFilterWeight(9, 16), rayFilterWeight(10, 16));
+  EXPECT_EQ(rayFilterWeight(17, 16), 0.0f);
+  EXPECT_EQ(rayFilterWeight(2, 0), 0.0f);
+  ProgressiveSettings s;
+  s.frames = 32;
+  const std::vector<FramePlan> plan = distributeSamples(s, {}, true);
+  for (const FramePlan& f : plan)
+    EXPECT_EQ(f.rayFilter, rayFilterWeight(f.frame, s.rayFilterFrames));
+  EXPECT_EQ(plan[1].rayFilter, 1.0f);
+}
+
 }  // namespace
 }  // namespace penumbra::progressive
