@@ -28,7 +28,8 @@ namespace {
 EnvironmentSpec::Kind resolvedKind(const EnvironmentSpec& spec, const Scene& scene) {
   using Kind = EnvironmentSpec::Kind;
   if (spec.kind != Kind::Default) return spec.kind;
-  const bool areaLit = std::ranges::any_of(scene.lights, [](const Light& l) { return l.isArea(); });
+  const bool areaLit = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                   [](const Light& l) { return l.isArea(); });
   return areaLit ? Kind::None : Kind::Studio;
 }
 
