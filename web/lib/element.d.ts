@@ -48,8 +48,10 @@ export declare class PenumbraViewerElement extends HTMLElement {
   loading: 'eager' | 'lazy' | string | null;
   /** A URL, or "neutral" for the built-in studio. */
   environmentImage: string | null;
-  /** EV (0: unchanged; model-viewer's exposure is a linear factor, 1 unchanged). */
+  /** A linear factor, as model-viewer's (1: unchanged; the renderer's setting is EV = log2 of it). */
   exposure: number | null;
+  /** auto-rotate: the view turns once left alone for auto-rotate-delay ms. */
+  autoRotate: boolean;
   toneMapping: 'neutral' | 'pbr-neutral' | 'aces' | 'reinhard' | 'none' | string | null;
   cameraControls: boolean;
   /** "θ φ radius", e.g. "30deg 75deg 2m"; parts may be "auto". */

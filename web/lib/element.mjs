@@ -13,6 +13,7 @@
 // over the public API: nothing of this is compiled into the wasm module.
 import { Penumbra, PenumbraError } from './penumbra.mjs';
 import { ProgressMeter } from './progress.mjs';
+import { AUTO_ROTATE_DEFAULTS } from './autorotate.mjs';
 
 export { Penumbra, PenumbraError, Viewer, version } from './penumbra.mjs';
 
@@ -23,6 +24,29 @@ const TONE_ALIASES = { neutral: 'pbr-neutral' };
 const CAMERA_ATTRIBUTES = ['camera-orbit', 'camera-target', 'field-of-view'];
 // Attributes the element sets on itself (accessibility): no reconciling needed.
 const OWN_ARIA = new Set(['role', 'aria-label', 'tabindex']);
+const AUTO_ROTATE_ATTRIBUTES = ['auto-rotate', 'rotation-per-second', 'auto-rotate-delay'];
+// model-viewer's attributes that Penumbra does not (yet) do: each warns once per element, so a
+// page moved over from model-viewer hears why nothing happens (docs/web/api.md has the table).
+export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
+  ar: 'AR is not supported', 'ar-modes': 'AR is not supported', 'ar-scale': 'AR is not supported',
+  'ar-placement': 'AR is not supported', 'ios-src': 'AR is not supported',
+  'xr-environment': 'AR is not supported',
+  autoplay: 'animations play only natively for now (penumbra-render --animation NAME --time T)',
+  'animation-name': 'animations play only natively for now (penumbra-render --animation NAME --time T)',
+  'animation-crossfade-duration': 'animations play only natively for now',
+  'shadow-intensity': 'there is no ground shadow yet', 'shadow-softness': 'there is no ground shadow yet',
+  'skybox-image': 'the background is environment-image\'s (or none with background="false")',
+  'skybox-height': 'the background is environment-image\'s',
+  'interaction-prompt': 'there is no interaction prompt', 'interaction-prompt-style': 'there is no interaction prompt',
+  'interaction-prompt-threshold': 'there is no interaction prompt',
+  'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',
+  'min-field-of-view': 'the field of view has no limits', 'max-field-of-view': 'the field of view has no limits',
+  'disable-zoom': 'camera-controls cannot be restricted', 'disable-pan': 'camera-controls cannot be restricted',
+  'disable-tap': 'camera-controls cannot be restricted', 'touch-action': 'camera-controls cannot be restricted',
+  'orbit-sensitivity': 'camera-controls cannot be tuned', 'interpolation-decay': 'camera changes are immediate',
+  orientation: 'the model cannot be turned', scale: 'the model cannot be scaled',
+  'with-credentials': 'files are fetched without credentials',
+});
 
 // The attribute of a setting of the schema: camelCase to kebab-case, or model-viewer's name.
 export function settingAttribute(key) {
@@ -42,6 +66,12 @@ function parseSetting(e, text, attr) {
   const n = Number(t);
   if (t === '' || !Number.isFinite(n)) {
     throw new PenumbraError(`${attr}="${text}": not a number${e.auto ? ' or auto' : ''}`);
+  }
+  // The element's exposure is model-viewer's: a linear factor (1 leaves the image as it is);
+  // the renderer's (the JS API, the CLI, scene files) is in EV.
+  if (e.key === 'exposure') {
+    if (n < 0) throw new PenumbraError(`${attr}="${text}": a factor of 0 or more (1 leaves the image as it is)`);
+    return n > 0 ? Math.max(e.min ?? -32, Math.min(e.max ?? 32, Math.log2(n))) : (e.min ?? -32);
   }
   return n;
 }
@@ -89,6 +119,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #loadedSrc = null;           // the URL of the scene shown
   #applied = null;             // what the viewer was last given, by attribute
   #cameraSet = false; #variantSet = false;
+  #warned = new Set();         // unsupported attributes already warned about
   #sceneCamera = null; #bounds = null;
   #busy = false; #again = false; #queued = false;
   #io = null; #mo = null; #disposeTimer = 0;
@@ -155,7 +186,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #resetApplied() {
     // null: nothing set by the element (the scene's own or the API's default is in effect).
     this.#applied = { settings: new Map(), environment: null, src: null, camera: null,
-                      variant: null };
+                      variant: null, autoRotate: null };
   }
 
   // Attribute changes arrive in batches (MutationObserver); one pass applies them all.
@@ -205,6 +236,8 @@ export class PenumbraViewerElement extends HTMLElement {
       this.#applyVariant(v);
       await this.#applyCamera(v);
     }
+    this.#applyAutoRotate(v);
+    this.#warnUnsupported();
     this.#updateRunning();
     // Not for a scene whose src was replaced meanwhile: the next pass loads the new one.
     if (loaded && this.loaded && this.#url(this.getAttribute('src') || '') === loaded) {
@@ -360,6 +393,36 @@ export class PenumbraViewerElement extends HTMLElement {
     }
   }
 
+  // auto-rotate, rotation-per-second (an angle a second: "30deg", "0.2rad", "0.2"; model-viewer's
+  // default pi/32 rad) and auto-rotate-delay (ms, 3000): autorotate.mjs.
+  #applyAutoRotate(v) {
+    const texts = AUTO_ROTATE_ATTRIBUTES.map((a) => this.getAttribute(a));
+    const key = JSON.stringify(texts);
+    if (key === this.#applied.autoRotate) return;
+    this.#applied.autoRotate = key;
+    const [on, rate, delay] = texts;
+    try {
+      const speed = rate === null || rate.trim() === 'auto' ? AUTO_ROTATE_DEFAULTS.speed
+        : parseList('rotation-per-second', rate.replace(/\/s$/, ''), ['angle'], [AUTO_ROTATE_DEFAULTS.speed],
+                    'an angle a second (e.g. 30deg)')[0];
+      const delayMs = delay === null ? AUTO_ROTATE_DEFAULTS.delayMs : Number(delay);
+      if (!(delayMs >= 0)) throw new PenumbraError(`auto-rotate-delay="${delay}": milliseconds, 0 or more`);
+      v.setAutoRotate({ enabled: on !== null && on !== 'false', speed, delayMs });
+    } catch (e) {
+      this.#fail('attribute', e);
+    }
+  }
+
+  // One console warning per element and attribute of model-viewer's that Penumbra lacks.
+  #warnUnsupported() {
+    for (const name of this.getAttributeNames()) {
+      const why = UNSUPPORTED_ATTRIBUTES[name];
+      if (why === undefined || this.#warned.has(name)) continue;
+      this.#warned.add(name);
+      console.warn(`[penumbra-viewer] ${name} is model-viewer's and not supported here: ${why}`);
+    }
+  }
+
   #cameraFromAttributes([orbit, target, fov]) {
     const b = this.#bounds;
     const centre = b ? b.min.map((m, i) => (m + b.max[i]) / 2) : [0, 0, 0];
@@ -436,10 +499,12 @@ for (const prop of STRINGS) {
     set(v) { if (v === null || v === undefined) this.removeAttribute(attr); else this.setAttribute(attr, String(v)); },
   });
 }
-Object.defineProperty(PenumbraViewerElement.prototype, 'cameraControls', {
-  get() { return this.hasAttribute('camera-controls'); },
-  set(v) { this.toggleAttribute('camera-controls', Boolean(v)); },
-});
+for (const [prop, attr] of [['cameraControls', 'camera-controls'], ['autoRotate', 'auto-rotate']]) {
+  Object.defineProperty(PenumbraViewerElement.prototype, prop, {
+    get() { return this.hasAttribute(attr); },
+    set(v) { this.toggleAttribute(attr, Boolean(v)); },
+  });
+}
 for (const prop of ['exposure', 'frames']) {
   Object.defineProperty(PenumbraViewerElement.prototype, prop, {
     get() {

@@ -273,6 +273,8 @@ export declare class Viewer {
   setVariant(name: string | number | null): string | null;
   /** A look-at camera, or 'reset' for the scene's own camera. */
   setCamera(camera: CameraSpec | 'reset'): Promise<void>;
+  /** Auto-rotate (model-viewer's defaults: pi/32 rad a second after 3000 ms left alone): the view turns about the target's vertical axis; an interaction restarts the delay. */
+  setAutoRotate(options: { enabled?: boolean; speed?: number; delayMs?: number }): void;
   setSettings(changes: Settings): Promise<EffectiveSettings>;
   restart(): void;
   /** Stops drawing (an off-screen view) until resume(); what accumulated stays. */

@@ -21,6 +21,7 @@ import { provideDecoders } from './decoders.mjs';
 import { bindWasmApi, decodeInSteps, timeSteps } from './wasm_api.mjs';
 import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
 import { FrameLoop } from './loop.mjs';
+import { AutoRotate } from './autorotate.mjs';
 import { PenumbraError, STEPPED_PANORAMA_PIXELS, fetchBytes, gatherScene, panoramaTooLarge,
   radianceSize, sourceName, toBytes } from './staging.mjs';
 import { version } from './version.mjs';  // written by CMake from the project's version
@@ -48,6 +49,7 @@ export class Viewer {
   #overrides = {};             // wasm settings the user set (re-applied after loads/restores)
   #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
+  #autoRotate = new AutoRotate();  // autorotate.mjs: turns the orbit once left alone
   #adapt; #renderSize = [0, 0]; #fullSize = [0, 0]; #needsPresent = true;
   #haveImage = false;          // a complete frame at the current render size exists
   #previewed = false;          // this view's first picture (the preview) was drawn
@@ -267,6 +269,18 @@ export class Viewer {
     this.#restarted();
   }
 
+  // Auto-rotate: {enabled, speed (radians a second), delayMs} (autorotate.mjs; model-viewer's
+  // defaults). The view turns once left alone for delayMs; an interaction restarts the delay.
+  setAutoRotate(options) {
+    this.#check();
+    try {
+      this.#autoRotate.configure(options, performance.now());
+    } catch (e) {
+      throw new PenumbraError(e.message);
+    }
+    this.#loop.wake();
+  }
+
   // {eye, target, up?, yfov?} in scene units (yfov in radians), or 'reset' for the scene's own.
   async setCamera(camera) {
     this.#check();
@@ -420,6 +434,7 @@ export class Viewer {
           if (!this.#orbit) return;
           this.#cameraDirty = true;
           this.#lastChange = performance.now();
+          this.#autoRotate.interacted(this.#lastChange);
           this.#loop.wake();
         },
         onReset: () => { if (this.#sceneInfo) this.setCamera('reset').catch((e) => this.#emitError(e)); },
@@ -562,13 +577,18 @@ export class Viewer {
   #step = () => {
     if (this.#disposed || !this.#running || this.#dead || this.#lost) return false;
     this.#frame();
+    // Auto-rotate keeps the loop awake while it waits for its delay and while it turns.
     return !(this.#stats.converged && !this.#needsPresent && !this.#cameraDirty &&
-             !this.#isMoving(performance.now()));
+             !this.#isMoving(performance.now()) && !this.#autoRotate.enabled);
   };
 
   #frame() {
     this.#syncCanvasSize();
     const now = performance.now();
+    if (this.#sceneInfo && this.#autoRotate.advance(this.#orbit, now)) {
+      this.#cameraDirty = true;
+      this.#lastChange = now;  // a turning view is a moving one
+    }
     const moving = this.#isMoving(now);
     const js = this.#jsSettings;
     const canvasPixels = this.#fullSize[0] * this.#fullSize[1];

@@ -160,13 +160,14 @@ test('exposure changes the image without a restart; converged once per view; src
     assert.equal(log.progress, progressBefore, 'no frames drawn after convergence');
 
     const dark = await shot(pg, '#a');
-    await pg.evaluate(() => document.querySelector('#a').setAttribute('exposure', '2'));
+    // model-viewer's exposure: a linear factor, 4 = +2 EV in the renderer's setting.
+    await pg.evaluate(() => document.querySelector('#a').setAttribute('exposure', '4'));
     await pg.waitForFunction(() => document.querySelector('#a').viewer.settings.exposure === 2,
                              null, { timeout: WAIT_MS });
     await pg.evaluate(() => window.frames(3));
     const bright = await shot(pg, '#a');
     assert.ok(mean(bright) > mean(dark) + 0.05,
-              `exposure 2 EV brightens the image: mean ${mean(dark).toFixed(3)} -> ${mean(bright).toFixed(3)}`);
+              `exposure 4 (2 EV) brightens the image: mean ${mean(dark).toFixed(3)} -> ${mean(bright).toFixed(3)}`);
     const after = await pg.evaluate(() => ({ ...document.querySelector('#a').log,
                                              frame: document.querySelector('#a').viewer.state.frame }));
     assert.equal(after.converged, 1, 'exposure applies to the converged image: no new view');
@@ -411,5 +412,51 @@ test('variant-name selects a material variant, removing it restores the model\'s
     assert.equal(error.type, 'attribute');
     assert.match(error.message, /^variant-name="tartan": no variant 'tartan'/);
     assert.doesNotMatch(error.message, /\n/);
+  });
+});
+
+test('auto-rotate turns the view once left alone and stops on a drag; model-viewer attributes Penumbra lacks warn once', { timeout: TEST_MS }, async () => {
+  await withTestPage('autorotate', async (pg) => {
+    const warnings = [];
+    pg.on('console', (m) => { if (m.type() === 'warning') warnings.push(m.text()); });
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="r" class="small" src="${src}" frames="8"
+      adaptive-resolution="false" camera-controls auto-rotate auto-rotate-delay="0"
+      rotation-per-second="90deg" ar shadow-intensity="1"></penumbra-viewer>`), GRID);
+    await pg.waitForFunction(() => document.querySelector('#r').loaded, null, { timeout: WAIT_MS });
+    const yaw = () => pg.evaluate(() => {
+      const c = document.querySelector('#r').viewer.camera;
+      return Math.atan2(-c.forward[0], -c.forward[2]);
+    });
+    const a = await yaw();
+    await pg.waitForTimeout(1500);
+    const b = await yaw();
+    const turned = Math.abs(Math.atan2(Math.sin(b - a), Math.cos(b - a)));
+    assert.ok(turned > 0.3, `auto-rotate turns the view (${turned.toFixed(3)} rad in 1.5 s at 90deg/s)`);
+    assert.equal(await pg.evaluate(() => document.querySelector('#r').log.converged), 0,
+                 'a turning view does not converge');
+    // A drag stops it; with a long delay it stays stopped and the view converges.
+    await pg.evaluate(() => document.querySelector('#r').setAttribute('auto-rotate-delay', '600000'));
+    const r = await pg.evaluate(() => {
+      const x = document.querySelector('#r').getBoundingClientRect();
+      return { x: x.x + x.width / 2, y: x.y + x.height / 2 };
+    });
+    await pg.mouse.move(r.x, r.y);
+    await pg.mouse.down();
+    await pg.mouse.move(r.x + 4, r.y);
+    await pg.mouse.up();
+    await waitConverged(pg, '#r', 1);
+    const c = await yaw();
+    await pg.waitForTimeout(1000);
+    const d = await yaw();
+    assert.ok(Math.abs(d - c) < 1e-6, `stopped after the drag (${Math.abs(d - c)})`);
+    // Removing auto-rotate: the element converges and the loop sleeps.
+    await pg.evaluate(() => document.querySelector('#r').removeAttribute('auto-rotate'));
+    // One warning each for ar and shadow-intensity, however many passes ran.
+    await pg.evaluate(() => document.querySelector('#r').setAttribute('exposure', '1'));
+    await pg.waitForTimeout(500);
+    const mine = warnings.filter((w) => /is model-viewer's and not supported/.test(w));
+    assert.equal(mine.filter((w) => w.includes('[penumbra-viewer] ar is')).length, 1, mine.join('\n'));
+    assert.equal(mine.filter((w) => w.includes('shadow-intensity')).length, 1, mine.join('\n'));
+    assert.equal(mine.length, 2, mine.join('\n'));
   });
 });

@@ -141,7 +141,7 @@ const PAGE_SCRIPT = `
   el.addEventListener('error', (e) => { window.result = { error: e.detail.message }; });
   el.addEventListener('load', () => { window.result = { ...window.result, version: Penumbra.version }; });
   window.result = {};`;
-const ELEMENT = '<penumbra-viewer src="model.glb" environment-image="studio.hdr" exposure="0" ' +
+const ELEMENT = '<penumbra-viewer src="model.glb" environment-image="studio.hdr" exposure="1" ' +
                 'frames="8" style="width: 200px; height: 150px"></penumbra-viewer>';
 
 test('a plain page with an import map to the installed package shows the model', { timeout: TEST_MS }, async () => {
