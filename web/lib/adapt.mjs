@@ -32,6 +32,7 @@ export const ADAPT_DEFAULTS = {
   maxPixelRatio: 2,         // caps devicePixelRatio (phones have 3: 2.25x the pixels of 2)
   minStillScale: 0.5,       // the lowest resolution scale adaptation picks for the still image
   minMotionScale: 0.25,     // the lowest resolution scale used while the camera moves
+  devicePixels: true,       // a still view done below the drawing buffer's pixels goes on to them
 };
 
 // The viewer's own settings (setSettings() takes them next to the renderer's schema).
@@ -48,6 +49,10 @@ export const JS_SCHEMA = [
   { key: 'maxSplit', type: 'integer', min: 1, max: 64, default: ADAPT_DEFAULTS.maxSplit,
     viewer: true, range: '1..64',
     help: 'most parts a frame is split into to fit the budget (1: never split)' },
+  { key: 'devicePixels', type: 'bool', default: ADAPT_DEFAULTS.devicePixels, viewer: true,
+    range: 'true or false',
+    help: 'a still view done at the CSS size goes on to the drawing buffer\'s (device) pixels, ' +
+          'shown when done there (the sharpened event)' },
 ];
 
 // null when `v` is a valid value of JS setting `key`, else the one-line message.

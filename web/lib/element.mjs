@@ -265,6 +265,7 @@ export class PenumbraViewerElement extends HTMLElement {
       this.#dispatch('progress', { ...d, totalProgress: percent / 100 });
     });
     v.on('converged', (d) => this.#dispatch('converged', d));
+    v.on('sharpened', (d) => this.#dispatch('sharpened', d));
     v.on('error', (e) => this.#fail('render', e));
     return true;
   }

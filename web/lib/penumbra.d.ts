@@ -80,6 +80,9 @@ export interface Settings {
   /** Most parts (bands of the image) a frame too slow for the budget is split into, drawn over
    *  several animation frames (1..64, default 8; 1: never split). */
   maxSplit?: number;
+  /** A still view done below the drawing buffer's pixels (a phone: the CSS size) renders again
+   *  at them, shown once done there ('sharpened'; state.stage). Default true. */
+  devicePixels?: boolean;
 }
 
 /** One row of the settings schema (the renderer's table, penumbra/settings.h). */
@@ -183,6 +186,9 @@ export interface ViewerState {
    *  before one): (total - frame) x frameMs is the time left. */
   total: number;
   converged: boolean;
+  /** 'css': the still view (and its 'converged'); 'sharpening': done there and going on at the
+   *  drawing buffer's (device) pixels, still showing the CSS-size image; 'device': shown there. */
+  stage: 'css' | 'sharpening' | 'device';
   /** Milliseconds of the last intermediate frame (its parts' time), and of the last frame 1. */
   frameMs: number;
   frame1Ms: number;
@@ -237,6 +243,8 @@ export interface BenchmarkResult {
 export interface ViewerEvents {
   progress: { frame: number; total: number };
   converged: { frame: number; total: number; milliseconds: number };
+  /** The still view reached the drawing buffer's pixels (devicePixels): shown from now on. */
+  sharpened: { frame: number; total: number; width: number; height: number; milliseconds: number };
   error: Error;
   contextlost: Record<string, never>;
   contextrestored: Record<string, never>;

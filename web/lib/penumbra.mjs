@@ -40,6 +40,9 @@ const DEFAULTS = {
 // penumbra/settings.h); JS_SCHEMA (adapt.mjs) holds the JS side's own.
 const JS_SETTINGS = new Set(JS_SCHEMA.map((e) => e.key));
 
+// The device-pixel stage begins this long after the first stop (#device).
+const DEVICE_STAGE_DELAY_MS = 1000;
+
 let canvasIds = 0;
 let stagingIds = 0;
 
@@ -50,6 +53,11 @@ export class Viewer {
   #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
   #autoRotate = new AutoRotate();  // autorotate.mjs: turns the orbit once left alone
+  // The second stage of a still view (devicePixels): done below the drawing buffer's pixels
+  // (a phone's CSS size), it renders again at them, out of sight until done (issue #59).
+  // It begins a second after the first stop, so a host that reads the converged image on
+  // 'converged' (readPixels is asynchronous) still gets it.
+  #device = { stage: false, done: false, startedAt: 0, pendingAt: 0 };
   #adapt; #renderSize = [0, 0]; #fullSize = [0, 0]; #needsPresent = true;
   #haveImage = false;          // a complete frame at the current render size exists
   #previewed = false;          // this view's first picture (the preview) was drawn
@@ -61,7 +69,7 @@ export class Viewer {
   #sceneInfo = null; #report = ''; #context = '';
   #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, previewMs: 0,
              stepsPerTick: 0, partsPerTick: 0, split: 1, parts: 1, restartedAt: 0,
-             convergedMs: 0 };
+             convergedMs: 0, stage: 'css' };
 
   static async create(canvas, options = {}) {
     if (!canvas || typeof canvas.getContext !== 'function') {
@@ -115,7 +123,8 @@ export class Viewer {
     this.#canvas = canvas;
     this.#opts = opts;
     this.#jsSettings = { budgetMs: opts.budgetMs, resolutionScale: opts.resolutionScale,
-                         adaptiveResolution: opts.adaptiveResolution, maxSplit: opts.maxSplit };
+                         adaptiveResolution: opts.adaptiveResolution, maxSplit: opts.maxSplit,
+                         devicePixels: opts.devicePixels };
     this.#adapt = new Adaptation({ minStillScale: opts.minStillScale,
                                    minMotionScale: opts.minMotionScale });
     this.#pv = bindWasmApi(mod);
@@ -329,6 +338,9 @@ export class Viewer {
     if (!this.#lost && Object.keys(wasm).length) this.#call('pv_set_settings', JSON.stringify(wasm));
     Object.assign(this.#overrides, wasm);
     Object.assign(this.#jsSettings, js);
+    // A change while sharpening shows at once: back to the still view's own size.
+    if (this.#device.stage && !this.#device.done) this.#device.stage = false;
+    if (this.#device.pendingAt) this.#device.pendingAt = performance.now() + DEVICE_STAGE_DELAY_MS;
     if (Object.keys(js).length) this.#refit = true;  // budget or bounds changed: choose again
     this.#needsPresent = true;  // exposure and tone mapping change the display without a restart
     this.#loop.wake();
@@ -524,12 +536,15 @@ export class Viewer {
     this.#emit('error', err);
   }
 
-  #restarted() {
+  #restarted(keepStage = false) {
+    if (!keepStage) Object.assign(this.#device, { stage: false, done: false, pendingAt: 0 });
+    this.#stats.stage = this.#device.stage ? (this.#device.done ? 'device' : 'sharpening') : 'css';
     this.#previewed = false;
-    this.#stats.restartedAt = performance.now();
-    this.#stats.converged = false;
     this.#frameWorkMs = 0;  // wasm drops a frame in progress on any restart
     this.#loop.wake();
+    if (keepStage) return;  // sharpening: the view stays converged (and its time) as shown
+    this.#stats.restartedAt = performance.now();
+    this.#stats.converged = false;
   }
 
   // Moving = the camera changed within stillMs. A finger or button held still does not count:
@@ -579,7 +594,8 @@ export class Viewer {
     this.#frame();
     // Auto-rotate keeps the loop awake while it waits for its delay and while it turns.
     return !(this.#stats.converged && !this.#needsPresent && !this.#cameraDirty &&
-             !this.#isMoving(performance.now()) && !this.#autoRotate.enabled);
+             !this.#isMoving(performance.now()) && !this.#autoRotate.enabled &&
+             !(this.#device.stage && !this.#device.done) && !this.#device.pendingAt);
   };
 
   #frame() {
@@ -604,8 +620,14 @@ export class Viewer {
       this.#refit = false;
       this.#adapt.refit(js, canvasPixels);
     }
+    if (moving) Object.assign(this.#device, { stage: false, pendingAt: 0 });
+    if (this.#device.pendingAt && now >= this.#device.pendingAt) {
+      Object.assign(this.#device, { stage: true, done: false, startedAt: now, pendingAt: 0 });
+      this.#stats.stage = 'sharpening';
+    }
     const stillScale = this.#adapt.currentStillScale(js);
-    const scale = moving ? Math.min(stillScale, this.#adapt.motionScale) : stillScale;
+    const scale = moving ? Math.min(stillScale, this.#adapt.motionScale)
+      : this.#device.stage ? js.resolutionScale : stillScale;
     const preview = scale < stillScale;  // a moving preview, not the image to converge
     const w = Math.max(1, Math.round(this.#fullSize[0] * scale));
     const h = Math.max(1, Math.round(this.#fullSize[1] * scale));
@@ -613,7 +635,7 @@ export class Viewer {
       this.#call('pv_set_settings', JSON.stringify({ width: w, height: h }));
       this.#renderSize = [w, h];
       this.#haveImage = false;  // new targets: nothing to show until a frame completes
-      this.#restarted();
+      this.#restarted(this.#device.stage);
     }
     if (this.#cameraDirty && this.#orbit) {
       const c = this.#orbit.toCamera();
@@ -626,7 +648,9 @@ export class Viewer {
     // A view's first picture: frame 1 at the preview's size (a quarter of the pixels), shown at
     // once and left out of the mean; the full frame 1 follows in the next animation frames.
     // On a slow device it comes several times sooner than a whole frame 1 would.
-    if (!this.#haveImage && !this.#previewed && !moving && this.#pv.pv_frames_done() === 0) {
+    const sharpening = this.#device.stage && !this.#device.done;  // the canvas keeps stage 1
+    if (!this.#haveImage && !this.#previewed && !moving && !sharpening &&
+        this.#pv.pv_frames_done() === 0) {
       this.#previewed = true;
       const start = performance.now();
       this.#call('pv_preview');
@@ -664,9 +688,20 @@ export class Viewer {
       this.#stats.partsPerTick = parts;
     }
     // Only complete frames are shown: a frame in progress leaves the previous mean in place.
-    if ((frames > 0 || this.#needsPresent) && this.#haveImage) this.#present(preview);
+    if ((frames > 0 || this.#needsPresent) && this.#haveImage && !sharpening) this.#present(preview);
     if (frames === 0) return;
     const frame = this.#pv.pv_frames_done(), total = this.#pv.pv_total_frames();
+    if (sharpening) {
+      if (!this.#pv.pv_converged()) return;
+      // Done at device pixels: shown now; 'converged' keeps its meaning (the first stop).
+      Object.assign(this.#device, { done: true });
+      Object.assign(this.#stats, { frame, total, converged: true, stage: 'device' });
+      this.#present(false);
+      const [width, height] = this.#renderSize;
+      this.#emit('sharpened', { frame, total, width, height,
+                                milliseconds: performance.now() - this.#device.startedAt });
+      return;
+    }
     Object.assign(this.#stats, { frame, total, stepsPerTick: frames });
     this.#emit('progress', { frame, total });
     // A moving preview is not the result: no 'converged' for it.
@@ -674,6 +709,12 @@ export class Viewer {
       this.#stats.converged = true;
       this.#stats.convergedMs = performance.now() - this.#stats.restartedAt;
       this.#emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
+      const [w0, h0] = this.#renderSize;
+      const full = [Math.round(this.#fullSize[0] * js.resolutionScale),
+                    Math.round(this.#fullSize[1] * js.resolutionScale)];
+      if (js.devicePixels && (w0 < full[0] || h0 < full[1])) {
+        this.#device.pendingAt = performance.now() + DEVICE_STAGE_DELAY_MS;
+      }
     }
   }
 
@@ -692,6 +733,8 @@ export class Viewer {
     const ms = this.#frameWorkMs;
     this.#frameWorkMs = 0;
     this.#haveImage = true;
+    // Sharpening's frames do not move the still scale: their size is the buffer's on purpose.
+    if (this.#device.stage) return false;
     const frame = this.#pv.pv_frames_done();
     const [w, h] = this.#renderSize;
     this.#stats.frameMs = ms;

@@ -74,7 +74,9 @@ test('on a phone: capped pixel ratio, collapsed panel that closes by its control
   const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
                   hasTouch: true };
   // A missing environment: the scene renders and a note says what failed.
-  const { browser, page } = await open(phone, '?frames=8&env=no/such/sky.hdr');
+  // devicePixels=0: the still scale is measured at the first stop, without the sharpening
+  // stage that follows it (the last test).
+  const { browser, page } = await open(phone, '?frames=8&env=no/such/sky.hdr&devicePixels=0');
   await withReport(page, 'phone', async () => {
     await page.waitForFunction(() => window.penumbraPage.viewer.state.frame >= 1, null,
                                { timeout: 30_000 });
@@ -234,3 +236,39 @@ test('a frame slower than the budget is drawn in bands over several animation fr
   console.log(`# split vs whole frames, converged canvas: ${fmt(d)}`);
   assert.ok(d.max <= SPLIT_MAX_TOL, `split vs whole: ${fmt(d)}`);
 });
+
+test('on a phone, a still view done at the CSS size goes on to device pixels and is shown there (sharpened)', { timeout: TEST_MS }, async () => {
+  const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
+                  hasTouch: true };
+  const { browser, page } = await open(phone, '?frames=8');
+  await withReport(page, 'phone-sharpen', async () => {
+    await page.evaluate(() => {
+      const p = window.penumbraPage;
+      p.sharpened = [];
+      p.converged = 0;
+      p.viewer.on('sharpened', (d) => p.sharpened.push(d));
+      p.viewer.on('converged', () => { p.converged++; });
+    });
+    await page.waitForFunction(() => window.penumbraPage.viewer.state.converged, null,
+                               { timeout: CONVERGE_MS });
+    const first = await state(page);
+    assert.ok(first.renderWidth < first.canvasWidth,
+              `done below the drawing buffer first: ${first.renderWidth} of ${first.canvasWidth}`);
+    await page.waitForFunction(() => window.penumbraPage.sharpened.length > 0, null,
+                               { timeout: CONVERGE_MS * 2 });
+    const s = await state(page);
+    const got = await page.evaluate(() => ({ sharpened: window.penumbraPage.sharpened,
+                                             converged: window.penumbraPage.converged,
+                                             status: document.querySelector('#progress').textContent }));
+    assert.equal(s.stage, 'device');
+    assert.equal(s.renderWidth, s.canvasWidth, 'the still image has every drawing-buffer pixel');
+    assert.equal(s.renderHeight, s.canvasHeight);
+    assert.equal(got.sharpened.length, 1);
+    assert.equal(got.sharpened[0].width, s.canvasWidth);
+    assert.ok(got.converged <= 1, `converged keeps its meaning (the first stop): ${got.converged}`);
+    assert.match(got.status, /^Done/);
+    await page.screenshot({ path: join(outDir, 'phone-sharpened.png') });
+  });
+  await browser.close();
+});
+

@@ -53,7 +53,8 @@ function statusLine(s) {
   if (page.loading) return `Loading ${page.loading}…`;
   if (!s.total) return 'No scene: open or drop a glTF file';
   const { percent, secondsLeft: left, done } = meter.update(s);
-  if (done) return 'Done';
+  // A phone's view done at the CSS size goes on at device pixels (viewer.state.stage).
+  if (done) return s.stage === 'sharpening' ? 'Done · sharpening for this screen…' : 'Done';
   if (page.percents.at(-1) !== percent) page.percents.push(percent);
   if (page.percents.length > 2000) page.percents.splice(0, 1000);
   // An automatic view's total is an estimate, so the time left is too: say it roughly.
@@ -268,6 +269,8 @@ async function main() {
   };
   // adaptive=0: the still image keeps the canvas's full size (tests comparing exact sizes).
   if (query.get('adaptive')) options.adaptiveResolution = query.get('adaptive') !== '0';
+  // devicePixels=0: a phone's still view stays at the CSS size (no sharpening stage).
+  if (query.get('devicePixels')) options.devicePixels = query.get('devicePixels') !== '0';
   const overrides = { frames: query.get('frames') === 'auto' ? 'auto' : numberParam('frames'),
                       fd: numberParam('fd'),
                       exposure: numberParam('exposure'),
