@@ -339,6 +339,12 @@ def write_report(a, results, skipped, frames, when):
              "why each scene's remaining error is there and what would halve it: "
              "[bias-budget-reading.md](bias-budget-reading.md).")
     L.append("")
+    L.append("**Render fidelity on real models.** The 55 public glTF sample models (Khronos; "
+             "`../shared/gltf-sample-assets`), each rendered by Penumbra and by Cycles from the same "
+             "camera under the same panorama at 320x240, RMSE and SSIM per model, a contact sheet "
+             "(Penumbra | Cycles | difference) and the models Blender cannot import faithfully marked "
+             "with the reason: [fidelity.md](fidelity.md) (`tools/fidelity`, issue #60).")
+    L.append("")
     L.append("The browser's path-tracer hand-off (Penumbra against three-gpu-pathtracer at the moment "
              "the path tracer takes over) has its own table: [handoff.md](handoff.md) "
              "(`node tools/handoff-eval.mjs`).")
