@@ -187,6 +187,15 @@ export class Viewer {
     await provideDecoders(this.#mod, staged.files);  // Draco/meshopt, only when the file needs them
     this.#check();
     const root = `/stage/${++stagingIds}`;
+    // The automatic framing fits a model to the render size's aspect (RenderJob): the canvas's.
+    this.#syncCanvasSize();
+    const scale = this.#adapt.currentStillScale(this.#jsSettings);
+    const size = this.#fullSize.map((n) => Math.max(1, Math.round(n * scale)));
+    if (this.#fullSize[0] > 0 && (size[0] !== this.#renderSize[0] || size[1] !== this.#renderSize[1])) {
+      this.#call('pv_set_settings', JSON.stringify({ width: size[0], height: size[1] }));
+      this.#renderSize = size;
+      this.#haveImage = false;
+    }
     let info;
     try {
       for (const f of staged.files) this.#writeFile(`${root}/${f.path}`, f.bytes);
