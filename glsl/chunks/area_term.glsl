@@ -64,7 +64,8 @@ vec3 areaShading(AreaLight A, Layers L) {
   // Diffuse transmission: the light's irradiance on the other side.
   back = L.backColor * (areaLightIrradiance(A, vWorldPos, -L.n) * INV_PI);
 #endif
-  return L.baseScale * (L.sheenScale * (L.diffuseColor * irradiance * INV_PI + specular + back) +
+  return L.baseScale * (L.sheenScale * (L.diffuseColor * irradiance * INV_PI +
+                                        specular * L.energyComp + back) +
                         L.sheenColor * (sheenLight * irradiance)) +
          L.coat * coatSpecular;
 }

@@ -85,7 +85,7 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, shadowNormal(l));
     vec3 e = uPunctualColor[i] * attenuation;
     vec3 base = L.diffuseColor * (max(NoL, 0.0) * INV_PI) +
-                punctualLobe(n, L.v, l, L.f0, L.f90, L.alpha, uPunctualDisk[i]);
+                punctualLobe(n, L.v, l, L.f0, L.f90, L.alpha, uPunctualDisk[i]) * L.energyComp;
 #if PN_DIFFUSE_TRANSMISSION
     base += L.backColor * (max(-NoL, 0.0) * INV_PI);
 #endif
