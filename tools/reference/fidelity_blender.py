@@ -393,6 +393,10 @@ def make_world(scene, env):
     scene.world = world
     world.use_nodes = True
     nt = world.node_tree
+    if env == "none":  # the scene's lights alone (penumbra-render --env none)
+        nt.nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        nt.nodes["Background"].inputs["Strength"].default_value = 0.0
+        return
     tex = nt.nodes.new("ShaderNodeTexEnvironment")
     tex.image = bpy.data.images.load(env)
     tex.image.colorspace_settings.name = "Linear"
