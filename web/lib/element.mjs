@@ -120,6 +120,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #applied = null;             // what the viewer was last given, by attribute
   #cameraSet = false; #variantSet = false;
   #warned = new Set();         // unsupported attributes already warned about
+  #modelVisible = false;       // model-visibility's last state
   #sceneCamera = null; #bounds = null;
   #busy = false; #again = false; #queued = false;
   #io = null; #mo = null; #disposeTimer = 0;
@@ -259,12 +260,17 @@ export class PenumbraViewerElement extends HTMLElement {
     v.on('progress', (d) => {
       if (!this.#drawn) {
         this.#drawn = true;
+        const posterWasShown = !this.#poster.hidden;
         this.#poster.hidden = !this.#posterShown();
+        // model-viewer's: the poster, if there was one, is gone.
+        if (posterWasShown && this.#poster.hidden) this.#dispatch('poster-dismissed', {});
       }
+      this.#setModelVisible(true);
       const { percent } = this.#meter.update({ ...d, converged: false, frameMs: 0 });
       this.#dispatch('progress', { ...d, totalProgress: percent / 100 });
     });
     v.on('converged', (d) => this.#dispatch('converged', d));
+    v.on('camera', (d) => this.#dispatch('camera-change', { source: d.source }));
     v.on('sharpened', (d) => this.#dispatch('sharpened', d));
     v.on('error', (e) => this.#fail('render', e));
     return true;
@@ -277,6 +283,7 @@ export class PenumbraViewerElement extends HTMLElement {
     const run = this.isConnected && this.#visible && this.#revealed() && this.#loadedSrc !== null &&
                 this.#applied.src !== null;
     this.#canvas.style.visibility = this.#applied.src !== null ? '' : 'hidden';
+    if (this.#applied.src === null) this.#setModelVisible(false);
     if (run) v.resume();
     else v.pause();
   }
@@ -412,6 +419,14 @@ export class PenumbraViewerElement extends HTMLElement {
     } catch (e) {
       this.#fail('attribute', e);
     }
+  }
+
+  // model-visibility {visible}: a model is drawn on the canvas (its first frame), or no more
+  // (src removed), as model-viewer reports it.
+  #setModelVisible(visible) {
+    if (visible === this.#modelVisible) return;
+    this.#modelVisible = visible;
+    this.#dispatch('model-visibility', { visible });
   }
 
   // One console warning per element and attribute of model-viewer's that Penumbra lacks.

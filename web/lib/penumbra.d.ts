@@ -248,8 +248,9 @@ export interface ViewerEvents {
   error: Error;
   contextlost: Record<string, never>;
   contextrestored: Record<string, never>;
-  /** The camera changed (orbit controls, setCamera): accumulation restarts. */
-  camera: CameraInfo;
+  /** The camera changed: accumulation restarts. source: 'user-interaction' (the orbit
+   *  controls), 'automatic' (auto-rotate) or 'none' (setCamera), as model-viewer's camera-change. */
+  camera: CameraInfo & { source: 'user-interaction' | 'automatic' | 'none' };
 }
 
 export declare class Viewer {

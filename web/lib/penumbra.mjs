@@ -53,6 +53,7 @@ export class Viewer {
   #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
   #autoRotate = new AutoRotate();  // autorotate.mjs: turns the orbit once left alone
+  #cameraSource = 'user-interaction';  // what moved the orbit last: the controls or auto-rotate
   // The second stage of a still view (devicePixels): done below the drawing buffer's pixels
   // (a phone's CSS size), it renders again at them, out of sight until done (issue #59).
   // It begins a second after the first stop, so a host that reads the converged image on
@@ -306,7 +307,7 @@ export class Viewer {
       const cam = this.#call('pv_reset_camera');
       if (this.#sceneInfo) this.#orbit = OrbitCamera.fromCamera(cam, this.#sceneInfo.bounds);
       this.#restarted();
-      this.#emit('camera', cam);
+      this.#emit('camera', { ...cam, source: 'none' });
       return;
     }
     const v3 = (v, what) => {
@@ -324,7 +325,7 @@ export class Viewer {
     this.#orbit.yfov = yfov;
     this.#orbit.setEye(eye);
     this.#restarted();
-    this.#emit('camera', cam);
+    this.#emit('camera', { ...cam, source: 'none' });
   }
 
   // Any key of settingsSchema (frames, fd, occlusionDistance, exposure, toneMapper,
@@ -453,6 +454,7 @@ export class Viewer {
       }, {
         onChange: () => {
           if (!this.#orbit) return;
+          this.#cameraSource = 'user-interaction';
           this.#cameraDirty = true;
           this.#lastChange = performance.now();
           this.#autoRotate.interacted(this.#lastChange);
@@ -611,6 +613,7 @@ export class Viewer {
     this.#syncCanvasSize();
     const now = performance.now();
     if (this.#sceneInfo && this.#autoRotate.advance(this.#orbit, now)) {
+      this.#cameraSource = 'automatic';
       this.#cameraDirty = true;
       this.#lastChange = now;  // a turning view is a moving one
     }
@@ -651,7 +654,7 @@ export class Viewer {
       const cam = this.#call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
       this.#cameraDirty = false;
       this.#restarted();
-      this.#emit('camera', cam);
+      this.#emit('camera', { ...cam, source: this.#cameraSource });
     }
     if (!this.#sceneInfo) return;  // nothing to show yet
     // A view's first picture: frame 1 at the preview's size (a quarter of the pixels), shown at

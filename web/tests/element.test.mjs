@@ -39,6 +39,12 @@ const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</
     el.addEventListener('error', (e) => el.log.error.push({ type: e.detail.type, message: e.detail.message }));
     el.addEventListener('converged', () => el.log.converged++);
     el.addEventListener('progress', () => el.log.progress++);
+    el.log.camera = [];
+    el.log.visibility = [];
+    el.log.posterDismissed = 0;
+    el.addEventListener('camera-change', (e) => el.log.camera.push(e.detail.source));
+    el.addEventListener('model-visibility', (e) => el.log.visibility.push(e.detail.visible));
+    el.addEventListener('poster-dismissed', () => el.log.posterDismissed++);
     parent.append(el);
     return el;
   };
@@ -253,7 +259,8 @@ test('loading="lazy" creates nothing off-screen; an eager element loads but draw
       return { lazyViewer: lazy.viewer === null, lazyLog: lazy.log, eagerLog: eager.log,
                eagerFrame: eager.viewer.state.frame, eagerPaused: eager.viewer.state.paused };
     });
-    assert.deepEqual(off.lazyLog, { load: [], error: [], converged: 0, progress: 0 });
+    assert.deepEqual(off.lazyLog, { load: [], error: [], converged: 0, progress: 0, camera: [],
+                                   visibility: [], posterDismissed: 0 });
     assert.equal(off.lazyViewer, true, 'a lazy element off-screen has no viewer yet');
     assert.equal(off.eagerLog.load.length, 1, 'the eager element loaded its scene');
     assert.equal(off.eagerLog.progress, 0, 'and drew no frame off-screen');
@@ -331,6 +338,9 @@ test('poster with reveal="interaction": nothing drawn until a click; removed and
     await pg.click('#p');
     await waitConverged(pg, '#p', 1);
     assert.equal(await pg.evaluate(() => document.querySelector('#p').shadowRoot.querySelector('.poster').hidden), true);
+    const shown = await pg.evaluate(() => ({ dismissed: document.querySelector('#p').log.posterDismissed,
+                                             visibility: document.querySelector('#p').log.visibility }));
+    assert.deepEqual(shown, { dismissed: 1, visibility: [true] }, 'poster-dismissed and model-visibility once each');
 
     // Removed, it frees its viewer and context; inserted again, it starts over on a new canvas.
     await pg.evaluate(() => { window.kept = document.querySelector('#p'); window.kept.remove(); });
@@ -434,6 +444,10 @@ test('auto-rotate turns the view once left alone and stops on a drag; model-view
     assert.ok(turned > 0.3, `auto-rotate turns the view (${turned.toFixed(3)} rad in 1.5 s at 90deg/s)`);
     assert.equal(await pg.evaluate(() => document.querySelector('#r').log.converged), 0,
                  'a turning view does not converge');
+    const sources = await pg.evaluate(() => document.querySelector('#r').log.camera);
+    assert.ok(sources.includes('automatic'), `camera-change from auto-rotate: ${sources}`);
+    assert.deepEqual(await pg.evaluate(() => document.querySelector('#r').log.visibility), [true],
+                     'model-visibility once, visible');
     // A drag stops it; with a long delay it stays stopped and the view converges.
     await pg.evaluate(() => document.querySelector('#r').setAttribute('auto-rotate-delay', '600000'));
     const r = await pg.evaluate(() => {
@@ -445,6 +459,8 @@ test('auto-rotate turns the view once left alone and stops on a drag; model-view
     await pg.mouse.move(r.x + 4, r.y);
     await pg.mouse.up();
     await waitConverged(pg, '#r', 1);
+    const after = await pg.evaluate(() => document.querySelector('#r').log.camera);
+    assert.ok(after.includes('user-interaction'), `camera-change from the drag: ${after}`);
     const c = await yaw();
     await pg.waitForTimeout(1000);
     const d = await yaw();
