@@ -10,6 +10,8 @@ import sys
 import time
 
 import numpy as np
+
+from image_metrics import luma, ssim  # shared with fidelity_blender.py
 import OpenImageIO as oiio
 import matplotlib
 matplotlib.use("Agg")
@@ -85,30 +87,6 @@ def srgb_encode(x):
 
 def display(lin, exposure):
     return srgb_encode(pbr_neutral(lin * 2.0 ** exposure))
-
-
-def luma(rgb):
-    return rgb @ np.array([0.2126, 0.7152, 0.0722])
-
-
-def gaussian_filter(img, sigma=1.5, radius=5):
-    t = np.arange(-radius, radius + 1)
-    k = np.exp(-t * t / (2 * sigma * sigma))
-    k /= k.sum()
-    p = np.pad(img, radius, mode="reflect")
-    tmp = sum(k[i] * p[:, i:i + img.shape[1]] for i in range(len(k)))
-    return sum(k[i] * tmp[i:i + img.shape[0], :] for i in range(len(k)))
-
-
-def ssim(a, b):
-    """SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5, K1 0.01, K2 0.03, range 1)."""
-    c1, c2 = 0.01 ** 2, 0.03 ** 2
-    mu_a, mu_b = gaussian_filter(a), gaussian_filter(b)
-    saa = gaussian_filter(a * a) - mu_a ** 2
-    sbb = gaussian_filter(b * b) - mu_b ** 2
-    sab = gaussian_filter(a * b) - mu_a * mu_b
-    m = ((2 * mu_a * mu_b + c1) * (2 * sab + c2)) / ((mu_a ** 2 + mu_b ** 2 + c1) * (saa + sbb + c2))
-    return float(m.mean())
 
 
 def metrics(img, ref, exposure):

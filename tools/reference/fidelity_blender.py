@@ -39,6 +39,9 @@ if not hasattr(numpy, "bool"):
     numpy.bool = bool  # Debian's Blender 3.4 glTF importer uses numpy.bool (removed in numpy 1.24)
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from image_metrics import luma, ssim  # noqa: E402 (numpy only; shared with evaluate.py)
+
 import bpy
 import mathutils
 
@@ -94,31 +97,6 @@ def pbr_neutral(c):
 def display(lin, exposure=0.0):
     x = np.clip(pbr_neutral(lin * 2.0 ** exposure), 0.0, 1.0)
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
-
-
-def luma(rgb):
-    return rgb @ np.array([0.2126, 0.7152, 0.0722])
-
-
-def gaussian_filter(img, sigma=1.5, radius=5):
-    t = np.arange(-radius, radius + 1)
-    k = np.exp(-t * t / (2 * sigma * sigma))
-    k /= k.sum()
-    p = np.pad(img, radius, mode="reflect")
-    tmp = sum(k[i] * p[:, i:i + img.shape[1]] for i in range(len(k)))
-    return sum(k[i] * tmp[i:i + img.shape[0], :] for i in range(len(k)))
-
-
-def ssim(a, b):
-    """SSIM as tools/reference/evaluate.py computes it (Wang et al. 2004: 11x11 Gaussian
-    window, sigma 1.5, K1 0.01, K2 0.03, range 1)."""
-    c1, c2 = 0.01 ** 2, 0.03 ** 2
-    mu_a, mu_b = gaussian_filter(a), gaussian_filter(b)
-    saa = gaussian_filter(a * a) - mu_a ** 2
-    sbb = gaussian_filter(b * b) - mu_b ** 2
-    sab = gaussian_filter(a * b) - mu_a * mu_b
-    m = ((2 * mu_a * mu_b + c1) * (2 * sab + c2)) / ((mu_a ** 2 + mu_b ** 2 + c1) * (saa + sbb + c2))
-    return float(m.mean())
 
 
 def to_cell(rgb01, cw, ch):
