@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from image_metrics import luma, ssim  # shared with fidelity_blender.py
+from image_metrics import luma, pbr_neutral, ssim  # shared with fidelity_blender.py
 import OpenImageIO as oiio
 import matplotlib
 matplotlib.use("Agg")
@@ -62,22 +62,6 @@ def write_png(path, rgb01):
     out.open(path, oiio.ImageSpec(a.shape[1], a.shape[0], a.shape[2], "uint8"))
     out.write_image(a)
     out.close()
-
-
-def pbr_neutral(c):
-    """Khronos PBR Neutral tone mapper (the same as Penumbra's glsl)."""
-    start = 0.8 - 0.04
-    desat = 0.15
-    x = c.min(axis=-1, keepdims=True)
-    offset = np.where(x < 0.08, x - 6.25 * x * x, 0.04)
-    c = c - offset
-    peak = c.max(axis=-1, keepdims=True)
-    d = 1.0 - start
-    new_peak = 1.0 - d * d / (peak + d - start)
-    scaled = c * (new_peak / np.maximum(peak, 1e-12))
-    g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0)
-    compressed = scaled * (1.0 - g) + new_peak * g
-    return np.where(peak < start, c, compressed)
 
 
 def srgb_encode(x):

@@ -40,7 +40,7 @@ if not hasattr(numpy, "bool"):
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from image_metrics import luma, ssim  # noqa: E402 (numpy only; shared with evaluate.py)
+from image_metrics import luma, pbr_neutral, ssim  # noqa: E402 (numpy only; shared with evaluate.py)
 
 import bpy
 import mathutils
@@ -78,20 +78,6 @@ def write_exr(path, rgb):
     img.file_format = "OPEN_EXR"
     img.save()
     bpy.data.images.remove(img)
-
-
-def pbr_neutral(c):
-    """Khronos PBR Neutral (Penumbra's default tone mapper; the same as evaluate.py's)."""
-    start, desat = 0.8 - 0.04, 0.15
-    x = c.min(axis=-1, keepdims=True)
-    offset = np.where(x < 0.08, x - 6.25 * x * x, 0.04)
-    c = c - offset
-    peak = c.max(axis=-1, keepdims=True)
-    d = 1.0 - start
-    new_peak = 1.0 - d * d / (peak + d - start)
-    scaled = c * (new_peak / np.maximum(peak, 1e-12))
-    g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0)
-    return np.where(peak < start, c, scaled * (1.0 - g) + new_peak * g)
 
 
 def display(lin, exposure=0.0):

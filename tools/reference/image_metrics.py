@@ -1,6 +1,23 @@
 """Image measures shared by tools/reference/evaluate.py and fidelity_blender.py (numpy only, so
-Blender's own Python can import it): luminance, the Gaussian window, SSIM."""
+Blender's own Python can import it): the PBR Neutral tone mapper, luminance, the Gaussian
+window, SSIM."""
 import numpy as np
+
+
+def pbr_neutral(c):
+    """Khronos PBR Neutral tone mapper (the same as Penumbra's glsl)."""
+    start = 0.8 - 0.04
+    desat = 0.15
+    x = c.min(axis=-1, keepdims=True)
+    offset = np.where(x < 0.08, x - 6.25 * x * x, 0.04)
+    c = c - offset
+    peak = c.max(axis=-1, keepdims=True)
+    d = 1.0 - start
+    new_peak = 1.0 - d * d / (peak + d - start)
+    scaled = c * (new_peak / np.maximum(peak, 1e-12))
+    g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0)
+    compressed = scaled * (1.0 - g) + new_peak * g
+    return np.where(peak < start, c, compressed)
 
 
 def luma(rgb):
