@@ -51,8 +51,8 @@ std::vector<glm::vec3> framingPoints(const Scene& scene) {
         corners(p.bounds, inst.world);
         continue;
       }
-      for (uint32_t i : p.indices)
-        points.emplace_back(inst.world * glm::vec4(p.positions[i], 1.0f));
+      // Each vertex once (the index list names most of them several times).
+      for (const glm::vec3& v : p.positions) points.emplace_back(inst.world * glm::vec4(v, 1.0f));
     }
   }
   std::erase_if(points, [](const glm::vec3& p) {
