@@ -41,7 +41,7 @@ TEST(LightCacheScheduleTest, AQuarterOfTheFramesFromFrameTwoThenRead) {
 bool cacheable(const Material& m, bool metallicRoughnessTexture = false) {
   bool has[kTextureSlotCount] = {};
   has[1] = metallicRoughnessTexture;
-  return (materialFeatures(m, has) & kFeatureLightCacheable) != 0;
+  return materialFeatures(m, has).lightCacheable != 0;
 }
 
 TEST(LightCacheScheduleTest, SmoothLobesEvaluateTheirLightsEveryFrame) {

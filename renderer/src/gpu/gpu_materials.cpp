@@ -266,53 +266,33 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
   program.set("uSlotUvT", std::span<const glm::vec4>(rowT));
 }
 
-uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSlotCount]) {
-  uint32_t f = 0;
+MaterialFeatures materialFeatures(const Material& m,
+                                  const bool (&hasTexture)[kTextureSlotCount]) {
+  MaterialFeatures f;
   for (int slot = 0; slot < kTextureSlotCount; ++slot) {
-    if (hasTexture[slot]) f |= 1u << slot;
+    if (hasTexture[slot]) f.textures |= 1u << slot;
   }
-  if (m.clearcoat > 0.0f) f |= kFeatureClearcoat;
-  if (glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f) {
-    f |= kFeatureSheen;
-  }
-  if (m.unlit) f |= kFeatureUnlit;
+  f.clearcoat = m.clearcoat > 0.0f;
+  f.sheen = glm::max(m.sheenColor.r, glm::max(m.sheenColor.g, m.sheenColor.b)) > 0.0f;
+  f.unlit = m.unlit;
   // The later extensions (their textures only scale their factors: a factor of 0 is off).
-  if (m.iridescence > 0.0f) f |= kFeatureIridescence;
-  if (m.anisotropy > 0.0f) f |= kFeatureAnisotropy;
-  if (m.diffuseTransmission > 0.0f && m.transmission <= 0.0f) f |= kFeatureDiffuseTransmission;
-  if (m.dispersion > 0.0f && m.transmission > 0.0f && m.thickness > 0.0f) f |= kFeatureDispersion;
-  f |= static_cast<uint32_t>(m.alphaMode) << kFeatureAlphaShift;
+  f.iridescence = m.iridescence > 0.0f;
+  f.anisotropy = m.anisotropy > 0.0f;
+  f.diffuseTransmission = m.diffuseTransmission > 0.0f && m.transmission <= 0.0f;
+  f.dispersion = m.dispersion > 0.0f && m.transmission > 0.0f && m.thickness > 0.0f;
+  f.alphaMode = static_cast<uint32_t>(m.alphaMode);
   const bool mrTexture = hasTexture[static_cast<int>(TextureSlot::MetallicRoughness)];
   // A broad specular lobe on a dielectric (its share of the light is a few per cent): the
   // occlusion march of its diffuse lobe stands for both.
-  if (!mrTexture && m.metallicFactor < 0.5f && m.roughnessFactor >= 0.75f) {
-    f |= kFeatureBroadLobe;
-  }
+  f.broadLobe = !mrTexture && m.metallicFactor < 0.5f && m.roughnessFactor >= 0.75f;
   // Lobes broad enough for the area lights' per-view cache (a light's reflection in a smooth
   // surface is under a pixel: a cache of a few sub-pixel positions would lose it). Textures
   // scale roughness down, so a textured roughness is not known to be broad.
   const bool coatRoughnessTexture = hasTexture[static_cast<int>(TextureSlot::ClearcoatRoughness)];
-  if (!mrTexture && m.roughnessFactor >= kLightCacheMinRoughness &&
-      (m.clearcoat <= 0.0f ||
-       (!coatRoughnessTexture && m.clearcoatRoughness >= kLightCacheMinRoughness))) {
-    f |= kFeatureLightCacheable;
-  }
+  f.lightCacheable = !mrTexture && m.roughnessFactor >= kLightCacheMinRoughness &&
+                     (m.clearcoat <= 0.0f ||
+                      (!coatRoughnessTexture && m.clearcoatRoughness >= kLightCacheMinRoughness));
   return f;
-}
-
-gl::Defines materialDefines(uint32_t features) {
-  const auto flag = [features](uint32_t bit) { return std::string(features & bit ? "1" : "0"); };
-  return {{"PN_MATERIAL_KEYED", "1"},
-          {"PN_TEXTURES", std::to_string(features & kFeatureTextures)},
-          {"PN_CLEARCOAT", flag(kFeatureClearcoat)},
-          {"PN_SHEEN", flag(kFeatureSheen)},
-          {"PN_UNLIT", flag(kFeatureUnlit)},
-          {"PN_ALPHA_MODE", std::to_string((features >> kFeatureAlphaShift) & 3u)},
-          {"PN_BROAD_LOBE", flag(kFeatureBroadLobe)},
-          {"PN_IRIDESCENCE", flag(kFeatureIridescence)},
-          {"PN_ANISOTROPY", flag(kFeatureAnisotropy)},
-          {"PN_DIFFUSE_TRANSMISSION", flag(kFeatureDiffuseTransmission)},
-          {"PN_DISPERSION", flag(kFeatureDispersion)}};
 }
 
 }  // namespace penumbra

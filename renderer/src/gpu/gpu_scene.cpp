@@ -169,7 +169,7 @@ Status GpuScene::buildDrawItems() {
   // Grouped by material features: each group is drawn with one specialised program. (BLEND
   // surfaces keep the scene's order; frame 1 sorts them back to front anyway.)
   const auto byFeatures = [this](const DrawItem& a, const DrawItem& b) {
-    return material(a.material).features < material(b.material).features;
+    return material(a.material).features.order() < material(b.material).features.order();
   };
   std::stable_sort(opaque_.begin(), opaque_.end(), byFeatures);
   std::stable_sort(transmissive_.begin(), transmissive_.end(), byFeatures);

@@ -12,6 +12,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "gpu/material_features.h"
 #include "penumbra/scene.h"
 
 namespace penumbra {
@@ -49,26 +50,8 @@ struct GpuMaterial {
                                   -1, -1, -1, -1, -1, -1, -1, -1, -1};
   gl::Texture2DArray layers;
   // What the material uses (materialFeatures): the shading programs are specialised on it.
-  uint32_t features = 0;
+  MaterialFeatures features;
 };
-
-// A material's features as bits: its texture slots (bit i: TextureSlot i), the layers it has,
-// its alpha mode (kFeatureAlphaShift, 2 bits), a broad specular lobe on a dielectric (roughness
-// 0.75 or more, metallic under 0.5, no metallic-roughness texture), lobes rough enough for
-// the area lights' per-view cache, and the later KHR_materials_* extensions it uses.
-inline constexpr uint32_t kFeatureTextures = (1u << kTextureSlotCount) - 1;
-inline constexpr uint32_t kFeatureClearcoat = 1u << 19, kFeatureSheen = 1u << 20,
-                          kFeatureUnlit = 1u << 21, kFeatureAlphaShift = 22,
-                          kFeatureBroadLobe = 1u << 24, kFeatureLightCacheable = 1u << 25,
-                          kFeatureIridescence = 1u << 26, kFeatureAnisotropy = 1u << 27,
-                          kFeatureDiffuseTransmission = 1u << 28, kFeatureDispersion = 1u << 29;
-static_assert(kTextureSlotCount == 19, "the feature bits after the slots move with them");
-inline constexpr float kLightCacheMinRoughness = 0.3f;
-uint32_t materialFeatures(const Material& m, const bool (&hasTexture)[kTextureSlotCount]);
-// The #defines that specialise chunks/material.glsl (and lighting.frag) on those features:
-// a software rasterizer runs both sides of a branch even on a uniform, so a material's absent
-// clearcoat, sheen or textures would otherwise cost every pixel.
-gl::Defines materialDefines(uint32_t features);
 
 // mesh.vert's and shadow.vert's aCopyRow0..2: a copy's world matrix (DrawItem::copies).
 inline constexpr int kCopyRowsLocation = 6;

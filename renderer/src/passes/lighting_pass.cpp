@@ -127,16 +127,15 @@ LightingVariant LightingPass::variant(const LightingBatch& b, bool occlusion, bo
   return v;
 }
 
-Result<gl::Program*> LightingPass::program(LightingVariant v, uint32_t features) {
-  // Smooth materials evaluate their lights every frame (gpu_scene.h kFeatureLightCacheable).
-  if (!(features & kFeatureLightCacheable)) v.lightCache = 0;
-  const uint64_t key = (static_cast<uint64_t>(v.key()) << 32) | features;
-  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
-  gl::Defines defines = v.defines();
-  for (auto& d : materialDefines(features)) defines.push_back(std::move(d));
-  auto p = library_->program("mesh.vert", "lighting.frag", defines);
+Result<gl::Program*> LightingPass::program(LightingVariant v, const MaterialFeatures& features) {
+  // Smooth materials evaluate their lights every frame (MaterialFeatures::lightCacheable).
+  if (!features.lightCacheable) v.lightCache = 0;
+  const ProgramKey key(v, features);
+  const std::array<uint64_t, 2> packed = key.key();
+  if (auto it = programs_.find(packed); it != programs_.end()) return it->second;
+  auto p = library_->program("mesh.vert", v.fragmentFile(), key.defines());
   if (!p) return p.error();
-  programs_.emplace(key, *p);
+  programs_.emplace(packed, *p);
   return *p;
 }
 
@@ -148,8 +147,8 @@ Status LightingPass::drawByMaterial(const LightingVariant& v, const GpuScene& sc
   const gl::Program* current = nullptr;
   const bool cacheWrite = v.lightCacheWrite != 0;
   for (const DrawItem& item : items) {
-    const uint32_t features = scene.material(item.material).features;
-    if (cacheWrite && !(features & kFeatureLightCacheable)) continue;  // they never read it
+    const MaterialFeatures& features = scene.material(item.material).features;
+    if (cacheWrite && !features.lightCacheable) continue;  // they never read it
     auto p = program(v, features);
     if (!p) return p.error();
     if (*p != current) {

@@ -10,7 +10,7 @@
 #include <array>
 #include <functional>
 #include <optional>
-#include <unordered_map>
+#include <map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -116,7 +116,7 @@ class LightingPass {
                      float skyDistance);
   // After a frame's last batch: copies the whole frame (the scene behind transmissive
   // surfaces), then draws those surfaces over it, each showing its own light (drawn with every
-  // batch) plus what it transmits of the copy (lighting.frag, PN_TRANSMISSION 2). Uses the
+  // batch) plus what it transmits of the copy (transmission_compose.frag). Uses the
   // first batch's camera and prepass. No-ops without transmissive surfaces.
   Status copyBehind(const LightingBatch& batch);
   Status composeTransmission(const LightingBatch& batch);
@@ -139,8 +139,9 @@ class LightingPass {
   static void setSampleCounts(LightingVariant& v, const LightingBatch& b);
   // The variant of batch b's own probe state and the given terms.
   static LightingVariant variant(const LightingBatch& b, bool occlusion, bool area, bool punctual);
-  // lighting.frag for a variant and a material's features (gpu/gpu_scene.h), built on first use.
-  Result<gl::Program*> program(LightingVariant v, uint32_t features);
+  // The program of a variant (LightingVariant::fragmentFile) and a material's features
+  // (ProgramKey), built on first use.
+  Result<gl::Program*> program(LightingVariant v, const MaterialFeatures& features);
   // The running mean's inputs of a batch that accumulates as it draws (accumulateFrame).
   static void setAccumulation(const gl::Program& p, const LightingBatch& b);
   // Draws items, each with the program of its pass and material; `setup` makes a program
@@ -163,7 +164,7 @@ class LightingPass {
                         const CameraMatrices& camera, float blur, float alpha);
 
   gl::ShaderLibrary* library_ = nullptr;
-  std::unordered_map<uint64_t, gl::Program*> programs_;  // (variant key << 32) | features
+  std::map<std::array<uint64_t, 2>, gl::Program*> programs_;  // by ProgramKey::key()
   gl::Program* depthOnly_ = nullptr;
   // The background's programs: [PN_ACCUMULATE * 2 + PN_BLUR]; the blurred ones made on first
   // use (a blur is a setting few views have).

@@ -1,19 +1,21 @@
-// LightingVariant: every switch a lighting.frag program is specialised on, in one table (after
-// Filament's Variant). The table gives each switch its field, its #define and its width in
-// bits; the struct makes both the program key and the #defines from it, so the two cannot
-// disagree and a new switch is one line. The material's features (gpu/gpu_scene.h) complete
-// the program's key.
+// LightingVariant: every switch a lighting program (glsl/lighting.frag and its siblings, one
+// per output) is specialised on, in one table (after Filament's Variant): each switch's field,
+// its #define and its width in bits. ProgramKey, with the material's features
+// (gpu/material_features.h), makes both the program key and every #define from the two tables,
+// so the two cannot disagree and a new switch is one line.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
 #include "gl/program.h"
+#include "gpu/material_features.h"
 #include "penumbra/error.h"
 
 namespace penumbra::passes {
 
-// X(field, DEFINE, bits): what glsl/lighting.frag's header lists.
+// X(field, DEFINE, bits): what glsl/chunks/lighting_common.glsl's header lists.
 #define PN_LIGHTING_SWITCHES(X)                                                                  \
   X(occlusion, PN_OCCLUSION, 1)               /* occlusion samples and screen-space indirect */  \
   X(area, PN_AREA, 1)                         /* area-light samples */                           \
@@ -37,30 +39,66 @@ struct LightingVariant {
   PN_LIGHTING_SWITCHES(PN_VARIANT_FIELD)
 #undef PN_VARIANT_FIELD
 
-  // The switches packed in the table's order (each checked to fit its bits).
-  uint32_t key() const {
-    uint32_t k = 0;
+  // One program per output (glsl/chunks/lighting_common.glsl): the fragment shader's file.
+  const char* fragmentFile() const {
+    if (capture) return "probe_capture.frag";
+    if (probeCacheWrite) return "probe_cache.frag";
+    if (lightCacheWrite) return "light_cache.frag";
+    if (transmission == 2) return "transmission_compose.frag";
+    return "lighting.frag";
+  }
+};
+
+// The program key: one table (PN_PROGRAM_KEY: the lighting switches, then the material's
+// features) gives both the key and every #define of a lighting program. Fields are packed in
+// the table's order into two 64-bit words, none straddling them.
+#define PN_PROGRAM_KEY(X) PN_LIGHTING_SWITCHES(X) PN_MATERIAL_FEATURES(X)
+
+namespace program_key_detail {
+#define PN_KEY_WIDTH(field, define, bits) (bits),
+inline constexpr int kWidths[] = {PN_PROGRAM_KEY(PN_KEY_WIDTH)};
+#undef PN_KEY_WIDTH
+// The bits the packing leaves free (at the end of each word).
+constexpr int freeBits() {
+  int word = 0, shift = 0;
+  for (const int bits : kWidths) {
+    if (shift + bits > 64) ++word, shift = 0;
+    shift += bits;
+  }
+  return (64 - shift) + (word == 0 ? 64 : 0);
+}
+}  // namespace program_key_detail
+
+// What docs/architecture.md states: room for at least 16 more switches' bits.
+inline constexpr int kProgramKeyFreeBits = program_key_detail::freeBits();
+static_assert(kProgramKeyFreeBits >= 16, "the program key needs 16 free bits");
+
+struct ProgramKey : LightingVariant, MaterialFeatures {
+  ProgramKey() = default;
+  ProgramKey(const LightingVariant& v, const MaterialFeatures& f)
+      : LightingVariant(v), MaterialFeatures(f) {}
+
+  std::array<uint64_t, 2> key() const {
+    std::array<uint64_t, 2> k{};
+    size_t word = 0;
     int shift = 0;
-#define PN_VARIANT_PACK(field, define, bits)                                             \
-  PN_CHECK(field < (1u << (bits)), "LightingVariant: " #field " does not fit its bits"); \
-  k |= field << shift;                                                                   \
+#define PN_KEY_PACK(field, define, bits)                                            \
+  PN_CHECK(field < (1ull << (bits)), "ProgramKey: " #field " does not fit its bits"); \
+  if (shift + (bits) > 64) ++word, shift = 0;                                       \
+  k[word] |= static_cast<uint64_t>(field) << shift;                                 \
   shift += (bits);
-    PN_LIGHTING_SWITCHES(PN_VARIANT_PACK)
-#undef PN_VARIANT_PACK
+    PN_PROGRAM_KEY(PN_KEY_PACK)
+#undef PN_KEY_PACK
     return k;
   }
 
   gl::Defines defines() const {
     gl::Defines d;
-#define PN_VARIANT_DEFINE(field, define, bits) d.emplace_back(#define, std::to_string(field));
-    PN_LIGHTING_SWITCHES(PN_VARIANT_DEFINE)
-#undef PN_VARIANT_DEFINE
+#define PN_KEY_DEFINE(field, define, bits) d.emplace_back(#define, std::to_string(field));
+    PN_PROGRAM_KEY(PN_KEY_DEFINE)
+#undef PN_KEY_DEFINE
     return d;
   }
 };
-
-#define PN_VARIANT_BITS(field, define, bits) +(bits)
-static_assert(0 PN_LIGHTING_SWITCHES(PN_VARIANT_BITS) <= 32, "a lighting variant's key is 32 bits");
-#undef PN_VARIANT_BITS
 
 }  // namespace penumbra::passes
