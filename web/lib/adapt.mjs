@@ -67,6 +67,23 @@ export function checkJsSetting(key, v) {
   return `setting '${key}' must be ${what}${e.range}`;
 }
 
+// setSettings()'s changes split into the renderer's (`wasmKeys`) and the JS side's, each JS
+// value checked: {wasm, js} or {error} (the first bad key's message). Undefined values skip.
+export function splitSettings(changes, wasmKeys) {
+  const wasm = {}, js = {};
+  for (const [k, v] of Object.entries(changes)) {
+    if (v === undefined) continue;
+    if (wasmKeys.has(k)) wasm[k] = v;
+    else if (JS_SCHEMA.some((e) => e.key === k)) js[k] = v;
+    else return { error: `unknown setting '${k}'` };
+  }
+  for (const [k, v] of Object.entries(js)) {
+    const bad = checkJsSetting(k, v);
+    if (bad) return { error: bad };
+  }
+  return { wasm, js };
+}
+
 // A still frame this much over its maxSplit budgets lowers the scale at once (restart);
 // below it, a new scale waits for the next rest. The margin keeps noise from restarting.
 export const REFIT_OVER = 1.5;
@@ -87,6 +104,7 @@ export class Adaptation {
   #costs = [];        // ms per render pixel of the last still frames (n >= 2)
   #frame1 = null;     // ms per render pixel of the last frame 1
   #opts;
+  #wasMoving = false; #refitDue = true;  // update(): choose the still scale at the next rest
 
   constructor(options = {}) {
     this.#opts = { ...ADAPT_DEFAULTS, ...options };
@@ -98,6 +116,24 @@ export class Adaptation {
     this.#costs = [];
     this.#frame1 = null;
     this.stillScale = null;
+    this.#refitDue = true;
+  }
+
+  // The canvas's pixels or the JS settings changed: choose the still scale again at rest.
+  refitLater() { this.#refitDue = true; }
+
+  // Each animation frame of the viewer: a gesture beginning fits the motion scale to the
+  // budget; at rest (again, or after refitLater) the still scale is chosen from what frames
+  // cost here.
+  update(settings, canvasPixels, moving) {
+    if (moving) {
+      if (!this.#wasMoving) this.startMotion(settings, canvasPixels);
+      this.#wasMoving = true;
+    } else if (this.#wasMoving || this.#refitDue) {
+      this.#wasMoving = false;
+      this.#refitDue = false;
+      this.refit(settings, canvasPixels);
+    }
   }
 
   // Median ms per render pixel of the last still frames, or null before any was measured.

@@ -56,3 +56,27 @@ export class FrameLoop {
     if (more) this.wake();
   };
 }
+
+// Draws parts of frames (pv_step_part) until the next part, if it costs what the last one did,
+// would overrun `budgetMs`, or the view converges. beforePart() runs before each part;
+// onPart(ms, began) after each (began: the part began a frame); onFrame() after a part that
+// completed a frame, true to stop there. Returns {parts, frames}; a failed part throws error().
+export function drawParts(pv, budgetMs, { beforePart, onPart, onFrame, error }) {
+  let parts = 0, frames = 0;
+  const start = performance.now();
+  let prev = start;
+  for (;;) {
+    beforePart();
+    const r = pv.pv_step_part();
+    if (r < 0) throw error();
+    if (r === 0) break;
+    pv.pv_sync();
+    const t = performance.now(), dt = t - prev;
+    prev = t;
+    parts++;
+    onPart(dt, pv.pv_last_part() === 1);
+    if (r === 1 && (++frames, onFrame())) break;
+    if (pv.pv_converged() || (t - start) + dt > budgetMs) break;
+  }
+  return { parts, frames };
+}

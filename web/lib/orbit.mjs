@@ -18,6 +18,18 @@ const normalize = (a) => scale(a, 1 / (length(a) || 1));
 // Just short of straight up or down, where the look-at frame with +Y up degenerates.
 const MAX_PITCH = Math.PI / 2 - 0.01;
 
+// Viewer.setCamera()'s {eye, target, up?, yfov?} checked and completed (up +Y, yfov
+// `defaultYfov`): {eye, target, up, yfov} or {error}.
+export function cameraFromOptions(camera, defaultYfov) {
+  const bad = (v) => !Array.isArray(v) || v.length !== 3 || !v.every(Number.isFinite);
+  for (const what of ['eye', 'target']) {
+    if (!camera || bad(camera[what])) return { error: `camera: '${what}' must be [x, y, z]` };
+  }
+  if (camera.up && bad(camera.up)) return { error: "camera: 'up' must be [x, y, z]" };
+  return { eye: camera.eye, target: camera.target, up: camera.up || [0, 1, 0],
+           yfov: camera.yfov ?? defaultYfov };
+}
+
 export class OrbitCamera {
   constructor() {
     this.target = [0, 0, 0];
@@ -99,6 +111,11 @@ export class OrbitCamera {
 // change; `onReset()` on a double click. Returns { detach(), active } where `active` is true
 // while a drag or pinch is in progress.
 export function attachOrbitControls(element, orbit, { onChange, onReset } = {}) {
+  if (typeof orbit === 'function') {  // a getter of the current camera (none: controls idle)
+    const current = orbit;
+    orbit = { orbit: (...a) => current()?.orbit(...a), pan: (...a) => current()?.pan(...a),
+              zoom: (...a) => current()?.zoom(...a) };
+  }
   const pointers = new Map();  // pointerId -> {x, y, button, shift}
   let pinch = null;            // {dist, mid} of the previous two-finger event
   const height = () => element.clientHeight || element.height || 1;

@@ -15,15 +15,13 @@
 // Every method that can fail returns a promise that rejects with a PenumbraError whose message
 // is the one-line C++ message; nothing throws out of the frame loop or the event handlers
 // (failures there go to the 'error' event). docs/web/api.md documents the API.
-import createPenumbraViewerModule from './penumbra_viewer.js';
-import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, checkJsSetting, effectivePixelRatio } from './adapt.mjs';
+import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, effectivePixelRatio, splitSettings } from './adapt.mjs';
 import { provideDecoders } from './decoders.mjs';
-import { bindWasmApi, decodeInSteps, timeSteps } from './wasm_api.mjs';
-import { OrbitCamera, attachOrbitControls } from './orbit.mjs';
-import { FrameLoop } from './loop.mjs';
+import { Emitter, WasmSession } from './session.mjs';
+import { OrbitCamera, attachOrbitControls, cameraFromOptions } from './orbit.mjs';
+import { FrameLoop, drawParts } from './loop.mjs';
 import { AutoRotate } from './autorotate.mjs';
-import { PenumbraError, STEPPED_PANORAMA_PIXELS, fetchBytes, gatherScene, panoramaTooLarge,
-  radianceSize, sourceName, toBytes } from './staging.mjs';
+import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
 import { version } from './version.mjs';  // written by CMake from the project's version
 
 export { PenumbraError, version };
@@ -43,11 +41,8 @@ const JS_SETTINGS = new Set(JS_SCHEMA.map((e) => e.key));
 // The device-pixel stage begins this long after the first stop (#device).
 const DEVICE_STAGE_DELAY_MS = 1000;
 
-let canvasIds = 0;
-let stagingIds = 0;
-
 export class Viewer {
-  #mod; #pv; #canvas; #opts; #listeners = new Map();
+  #s; #pv; #canvas; #opts; #events = new Emitter();  // session.mjs
   #schema = []; #wasmKeys = new Set();  // the settings schema; keys setSettings() sends to wasm
   #overrides = {};             // wasm settings the user set (re-applied after loads/restores)
   #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
@@ -63,9 +58,8 @@ export class Viewer {
   #haveImage = false;          // a complete frame at the current render size exists
   #previewed = false;          // this view's first picture (the preview) was drawn
   #frameWorkMs = 0; #tiles = 0;  // time of the frame's parts so far; bands set in wasm
-  #wasMoving = false; #refit = true;  // choose the still scale at the next still tick
   #envToken = 0;  // the last setEnvironment call (a stepped load stops when it is not)
-  #loop; #running = false; #disposed = false; #lost = false; #dead = null;
+  #loop; #running = false; #disposed = false; #lost = false;
   #resizeObserver = null;
   #sceneInfo = null; #report = ''; #context = '';
   #stats = { frame: 0, total: 0, converged: false, frameMs: 0, frame1Ms: 0, previewMs: 0,
@@ -79,28 +73,13 @@ export class Viewer {
     // An option given as undefined means "the default", as it would if left out.
     const given = Object.fromEntries(Object.entries(options).filter(([, v]) => v !== undefined));
     const opts = { ...DEFAULTS, ...given };
-    let aborted = null;
-    let mod;
-    try {
-      mod = await createPenumbraViewerModule({
-        print: (t) => console.log(`[penumbra] ${t}`),
-        printErr: (t) => console.warn(`[penumbra] ${t}`),
-        onAbort: (what) => { aborted = String(what); if (viewer) viewer.#abort(aborted); },
-      });
-    } catch (e) {
-      throw new PenumbraError(`cannot load the Penumbra module: ${e && e.message ? e.message : e}`);
-    }
-    if (!canvas.id) canvas.id = `penumbra-canvas-${++canvasIds}`;
-    const selector = `#${CSS.escape(canvas.id)}`;
-    // Emscripten looks canvases up with document.querySelector, which does not see into a shadow
-    // root (<penumbra-viewer>): the module is given this one by its selector.
-    mod.specialHTMLTargets[selector] = canvas;
-    var viewer = new Viewer(mod, canvas, opts);
-    if (aborted) throw new PenumbraError(`the Penumbra module aborted: ${aborted}`);
-    const created = viewer.#call('pv_create', selector, opts.forceHalfFloat ? 1 : 0);
+    const { session, selector } = await WasmSession.load(canvas);
+    const viewer = new Viewer(session, canvas, opts);
+    session.onAbort = (what) => viewer.#abort(what);
+    const created = viewer.#s.call('pv_create', selector, opts.forceHalfFloat ? 1 : 0);
     viewer.#context = created.context;
     viewer.#report = created.report;
-    viewer.#schema = [...viewer.#call('pv_settings_schema').settings.filter((e) => e.viewer),
+    viewer.#schema = [...viewer.#s.call('pv_settings_schema').settings.filter((e) => e.viewer),
                       ...JS_SCHEMA];
     viewer.#wasmKeys = new Set(viewer.#schema.map((e) => e.key).filter((k) => !JS_SETTINGS.has(k)));
     viewer.#attach();
@@ -119,8 +98,9 @@ export class Viewer {
     return viewer;
   }
 
-  constructor(mod, canvas, opts) {
-    this.#mod = mod;
+  constructor(session, canvas, opts) {
+    this.#s = session;
+    this.#pv = session.pv;
     this.#canvas = canvas;
     this.#opts = opts;
     this.#jsSettings = { budgetMs: opts.budgetMs, resolutionScale: opts.resolutionScale,
@@ -128,8 +108,7 @@ export class Viewer {
                          devicePixels: opts.devicePixels };
     this.#adapt = new Adaptation({ minStillScale: opts.minStillScale,
                                    minMotionScale: opts.minMotionScale });
-    this.#pv = bindWasmApi(mod);
-    this.#loop = new FrameLoop(this.#step, (e) => this.#emitError(e));
+    this.#loop = new FrameLoop(this.#step, (e) => this.#events.emitError(e));
   }
 
   // ---- public API ---------------------------------------------------------------------------
@@ -148,7 +127,7 @@ export class Viewer {
              msPerMegapixel: cost === null ? null : cost * 1e6,
              moving: this.#isMoving(performance.now()), paused: this.#loop.paused,
              looping: this.#loop.scheduled,
-             gpuMemoryBytes: this.#lost || this.#dead ? 0 : this.#pv.pv_gpu_memory() };
+             gpuMemoryBytes: this.#lost || this.#s.dead ? 0 : this.#pv.pv_gpu_memory() };
   }
   // Every setting setSettings() takes: {key, type, min, max, default, range, help}, from the
   // renderer's schema plus the JS side's budgetMs and resolutionScale.
@@ -160,11 +139,11 @@ export class Viewer {
   // orthographic, ymag, name}; the 'camera' event sends the same when it changes.
   get camera() {
     this.#check();
-    return this.#call('pv_get_state').camera;
+    return this.#s.call('pv_get_state').camera;
   }
 
   get settings() {
-    const s = this.#lost ? { ...this.#overrides } : this.#call('pv_get_state').settings;
+    const s = this.#lost ? { ...this.#overrides } : this.#s.call('pv_get_state').settings;
     for (const k of Object.keys(s)) if (!this.#wasmKeys.has(k)) delete s[k];
     // Values pass through float32 in wasm: show 0.3, not 0.30000001192092896.
     for (const [k, v] of Object.entries(s)) {
@@ -185,27 +164,20 @@ export class Viewer {
       main = { bytes: await toBytes(source), name: name || sourceName(source, 'scene') };
     }
     const staged = await gatherScene(main, resources || {});
-    await provideDecoders(this.#mod, staged.files);  // Draco/meshopt, only when the file needs them
+    await provideDecoders(this.#s.mod, staged.files);  // Draco/meshopt, only when the file needs them
     this.#check();
-    const root = `/stage/${++stagingIds}`;
     // The automatic framing fits a model to the render size's aspect (RenderJob): the canvas's.
     this.#syncCanvasSize();
     const scale = this.#adapt.currentStillScale(this.#jsSettings);
     const size = this.#fullSize.map((n) => Math.max(1, Math.round(n * scale)));
     if (this.#fullSize[0] > 0 && (size[0] !== this.#renderSize[0] || size[1] !== this.#renderSize[1])) {
-      this.#call('pv_set_settings', JSON.stringify({ width: size[0], height: size[1] }));
+      this.#s.call('pv_set_settings', JSON.stringify({ width: size[0], height: size[1] }));
       this.#renderSize = size;
       this.#haveImage = false;
     }
-    let info;
-    try {
-      for (const f of staged.files) this.#writeFile(`${root}/${f.path}`, f.bytes);
-      const cut = staged.mainPath.lastIndexOf('/');
-      info = this.#call('pv_load_scene', `${root}/${staged.mainPath.slice(0, cut)}`,
-                        staged.mainPath.slice(cut + 1));
-    } finally {
-      this.#pv.pv_remove_tree(root);
-    }
+    const cut = staged.mainPath.lastIndexOf('/');
+    const info = this.#s.staged(staged.files, (root) => this.#s.call(
+      'pv_load_scene', `${root}/${staged.mainPath.slice(0, cut)}`, staged.mainPath.slice(cut + 1)));
     this.#sceneInfo = { name: main.name, sceneFile: info.sceneFile,
                         triangles: info.triangles, lights: info.lights,
                         cameras: info.cameras, variants: info.variants, variant: info.variant,
@@ -215,11 +187,10 @@ export class Viewer {
       console.warn(`[penumbra] ${w.startsWith(main.name) ? w : `${main.name}: ${w}`}`);
     }
     // The user's own settings win over the scene file's.
-    this.#call('pv_set_settings', JSON.stringify(this.#overrides));
+    this.#s.call('pv_set_settings', JSON.stringify(this.#overrides));
     this.#orbit = OrbitCamera.fromCamera(info.camera, info.bounds);
     this.#cameraDirty = false;
     this.#adapt.reset();  // another scene costs differently: measure again
-    this.#refit = true;
     this.#restarted();
     return this.#sceneInfo;
   }
@@ -229,7 +200,7 @@ export class Viewer {
   // Restarts the view; the geometry stays on the GPU.
   setVariant(name) {
     this.#check();
-    const state = this.#call('pv_set_variant', name === null || name === undefined ? '' : String(name));
+    const state = this.#s.call('pv_set_variant', name === null || name === undefined ? '' : String(name));
     if (this.#sceneInfo) this.#sceneInfo.variant = state.variant;
     this.#restarted();
     return state.variant;
@@ -242,49 +213,10 @@ export class Viewer {
   async setEnvironment(source, { name } = {}) {
     this.#check();
     const token = ++this.#envToken;  // a stepped load still running gives way to this one
-    if (source === null || source === 'studio') {
-      const state = this.#call('pv_set_builtin_environment', source === null ? 'default' : 'studio');
-      if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
-      this.#restarted();
-      return;
-    }
-    if (Array.isArray(source)) {
-      if (source.length !== 3 || !source.every(Number.isFinite)) {
-        throw new PenumbraError('a uniform environment is [r, g, b]');
-      }
-      this.#call('pv_set_uniform_environment', ...source);
-      this.#restarted();
-      return;
-    }
-    let bytes;
-    if (typeof source === 'string' || source instanceof URL) {
-      bytes = await fetchBytes(new URL(String(source), location.href).href);
-    } else {
-      bytes = await toBytes(source);
-    }
-    this.#check();
-    const shown = name || sourceName(source, 'environment.hdr');
-    const tooLarge = panoramaTooLarge(bytes, shown);
-    if (tooLarge) throw new PenumbraError(tooLarge);
-    const file = shown.replace(/[^\w.+-]/g, '_');
-    const size = radianceSize(bytes);
-    let state;
-    if (size && !size.packed && size.width * size.height > STEPPED_PANORAMA_PIXELS) {
-      // A large panorama decodes in steps, the page running between them.
-      this.#withHeapCopy(bytes, (ptr) => this.#call('pv_env_begin', ptr, bytes.length, file));
-      const stale = () => token !== this.#envToken || !this.#usable();
-      if (!await decodeInSteps((rows) => this.#call('pv_env_step', rows).done, stale)) return;
-      state = this.#call('pv_env_finish');
-    } else {
-      const root = `/stage/${++stagingIds}`;
-      try {
-        this.#writeFile(`${root}/${file}`, bytes);
-        state = this.#call('pv_set_environment', root, file);
-      } finally {
-        this.#pv.pv_remove_tree(root);
-      }
-    }
-    if (this.#sceneInfo) this.#sceneInfo.environment = state.environment;
+    const state = await this.#s.setEnvironment(source, name, {
+      check: () => this.#check(), stale: () => token !== this.#envToken || !this.#usable() });
+    if (!state) return;  // another environment was set meanwhile
+    if (this.#sceneInfo && state.environment) this.#sceneInfo.environment = state.environment;
     this.#restarted();
   }
 
@@ -304,28 +236,21 @@ export class Viewer {
   async setCamera(camera) {
     this.#check();
     if (camera === 'reset') {
-      const cam = this.#call('pv_reset_camera');
+      const cam = this.#s.call('pv_reset_camera');
       if (this.#sceneInfo) this.#orbit = OrbitCamera.fromCamera(cam, this.#sceneInfo.bounds);
       this.#restarted();
-      this.#emit('camera', { ...cam, source: 'none' });
+      this.#events.emit('camera', { ...cam, source: 'none' });
       return;
     }
-    const v3 = (v, what) => {
-      if (!Array.isArray(v) || v.length !== 3 || !v.every(Number.isFinite)) {
-        throw new PenumbraError(`camera: '${what}' must be [x, y, z]`);
-      }
-      return v;
-    };
-    const eye = v3(camera && camera.eye, 'eye'), target = v3(camera.target, 'target');
-    const up = camera.up ? v3(camera.up, 'up') : [0, 1, 0];
-    const yfov = camera.yfov ?? (this.#orbit ? this.#orbit.yfov : 0.8);
-    const cam = this.#call('pv_set_camera', ...eye, ...target, ...up, yfov);
+    const { eye, target, up, yfov, error } = cameraFromOptions(camera, this.#orbit?.yfov ?? 0.8);
+    if (error) throw new PenumbraError(error);
+    const cam = this.#s.call('pv_set_camera', ...eye, ...target, ...up, yfov);
     if (!this.#orbit) this.#orbit = new OrbitCamera();
     this.#orbit.target = [...target];
     this.#orbit.yfov = yfov;
     this.#orbit.setEye(eye);
     this.#restarted();
-    this.#emit('camera', { ...cam, source: 'none' });
+    this.#events.emit('camera', { ...cam, source: 'none' });
   }
 
   // Any key of settingsSchema (frames, fd, occlusionDistance, exposure, toneMapper,
@@ -333,25 +258,15 @@ export class Viewer {
   // settings.
   async setSettings(changes = {}) {
     this.#check();
-    const wasm = {};
-    const js = {};
-    for (const [k, v] of Object.entries(changes)) {
-      if (v === undefined) continue;
-      if (this.#wasmKeys.has(k)) wasm[k] = v;
-      else if (JS_SETTINGS.has(k)) js[k] = v;
-      else throw new PenumbraError(`unknown setting '${k}'`);
-    }
-    for (const [k, v] of Object.entries(js)) {
-      const bad = checkJsSetting(k, v);
-      if (bad) throw new PenumbraError(bad);
-    }
-    if (!this.#lost && Object.keys(wasm).length) this.#call('pv_set_settings', JSON.stringify(wasm));
+    const { wasm, js, error } = splitSettings(changes, this.#wasmKeys);
+    if (error) throw new PenumbraError(error);
+    if (!this.#lost && Object.keys(wasm).length) this.#s.call('pv_set_settings', JSON.stringify(wasm));
     Object.assign(this.#overrides, wasm);
     Object.assign(this.#jsSettings, js);
     // A change while sharpening shows at once: back to the still view's own size.
     if (this.#device.stage && !this.#device.done) this.#device.stage = false;
     if (this.#device.pendingAt) this.#device.pendingAt = performance.now() + DEVICE_STAGE_DELAY_MS;
-    if (Object.keys(js).length) this.#refit = true;  // budget or bounds changed: choose again
+    if (Object.keys(js).length) this.#adapt.refitLater();  // budget or bounds changed
     this.#needsPresent = true;  // exposure and tone mapping change the display without a restart
     this.#loop.wake();
     return this.#lost ? { ...this.#overrides, ...this.#jsSettings } : this.settings;
@@ -367,12 +282,8 @@ export class Viewer {
     if (this.#usable()) { this.#pv.pv_restart(); this.#restarted(); }
   }
 
-  on(event, handler) {
-    if (!this.#listeners.has(event)) this.#listeners.set(event, new Set());
-    this.#listeners.get(event).add(handler);
-    return () => this.off(event, handler);
-  }
-  off(event, handler) { this.#listeners.get(event)?.delete(handler); }
+  on(event, handler) { return this.#events.on(event, handler); }
+  off(event, handler) { this.#events.off(event, handler); }
 
   // The canvas as a PNG Blob (the context keeps its drawing buffer, so this is what is shown).
   screenshot() {
@@ -389,8 +300,8 @@ export class Viewer {
   // high-DPR phone (never below the CSS size) or while moving: canvasWidth/Height say which.
   async readPixels({ display = false } = {}) {
     this.#check();
-    const r = this.#call('pv_read', display ? 1 : 0);
-    const data = new Float32Array(this.#mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
+    const r = this.#s.call('pv_read', display ? 1 : 0);
+    const data = new Float32Array(this.#s.mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
     return { width: r.width, height: r.height, frames: r.frames, data,
              canvasWidth: this.#fullSize[0], canvasHeight: this.#fullSize[1] };
   }
@@ -404,18 +315,9 @@ export class Viewer {
     const wasRunning = this.#running;
     this.#running = false;
     try {
-      const m = frames || this.#pv.pv_total_frames();
-      const run = (syncEach) => {
-        const r = timeSteps(this.#pv, m, syncEach);
-        if (r.frames === 0) throw new PenumbraError(this.#lastError());
-        return r;
-      };
-      run(false);  // warm-up
-      const a = run(false);
-      const b = run(true);
+      const r = this.#s.benchmark(frames || this.#pv.pv_total_frames());
       this.#restarted();
-      return { frames: a.frames, width: this.#renderSize[0], height: this.#renderSize[1],
-               msPerFrame: a.ms / a.frames, msPerFrameSynced: b.ms / b.frames, totalMs: a.ms };
+      return { ...r, width: this.#renderSize[0], height: this.#renderSize[1] };
     } finally {
       this.#running = wasRunning;
     }
@@ -432,7 +334,7 @@ export class Viewer {
     this.#canvas.removeEventListener('webglcontextlost', this.#onLost);
     this.#canvas.removeEventListener('webglcontextrestored', this.#onRestored);
     try { this.#pv.pv_destroy(); } catch { /* an aborted module has nothing left to free */ }
-    this.#listeners.clear();
+    this.#events.clear();
   }
 
   // ---- internals ----------------------------------------------------------------------------
@@ -447,11 +349,8 @@ export class Viewer {
     }
     window.addEventListener('resize', this.#loop.wake);
     if (this.#opts.controls) {
-      this.#controls = attachOrbitControls(this.#canvas, {
-        // Proxy so the controls always act on the current scene's orbit camera.
-        orbit: (...a) => this.#orbit?.orbit(...a), pan: (...a) => this.#orbit?.pan(...a),
-        zoom: (...a) => this.#orbit?.zoom(...a),
-      }, {
+      // The controls always act on the current scene's orbit camera.
+      this.#controls = attachOrbitControls(this.#canvas, () => this.#orbit, {
         onChange: () => {
           if (!this.#orbit) return;
           this.#cameraSource = 'user-interaction';
@@ -460,7 +359,7 @@ export class Viewer {
           this.#autoRotate.interacted(this.#lastChange);
           this.#loop.wake();
         },
-        onReset: () => { if (this.#sceneInfo) this.setCamera('reset').catch((e) => this.#emitError(e)); },
+        onReset: () => { if (this.#sceneInfo) this.setCamera('reset').catch((e) => this.#events.emitError(e)); },
       });
     }
   }
@@ -468,83 +367,38 @@ export class Viewer {
   #onLost = (e) => {
     e.preventDefault();  // without this the browser never restores the context
     this.#lost = true;
-    try { this.#pv.pv_context_lost(); } catch (err) { this.#emitError(err); }
-    this.#emit('contextlost', {});
+    try { this.#pv.pv_context_lost(); } catch (err) { this.#events.emitError(err); }
+    this.#events.emit('contextlost', {});
   };
 
   #onRestored = () => {
-    if (this.#disposed || this.#dead) return;
+    if (this.#disposed || this.#s.dead) return;
     try {
-      const r = this.#call('pv_context_restored');
+      const r = this.#s.call('pv_context_restored');
       this.#context = r.context;
       this.#report = r.report;
       this.#lost = false;
-      this.#call('pv_set_settings', JSON.stringify(this.#overrides));
+      this.#s.call('pv_set_settings', JSON.stringify(this.#overrides));
       this.#renderSize = [0, 0];  // the new renderer starts at its default size
       this.#tiles = 0;            // and with whole frames
       this.#haveImage = false;
       this.#adapt.reset();
-      this.#refit = true;
       this.#restarted();
-      this.#emit('contextrestored', {});
+      this.#events.emit('contextrestored', {});
     } catch (err) {
-      this.#emitError(err);
+      this.#events.emitError(err);
     }
   };
 
-  #call(name, ...args) {
-    if (this.#dead) throw new PenumbraError(`the Penumbra module aborted: ${this.#dead}`);
-    let text;
-    try {
-      text = this.#pv[name](...args);
-    } catch (e) {
-      throw new PenumbraError(`${name}: ${e && e.message ? e.message : e}`);
-    }
-    const result = JSON.parse(text);
-    if (result && typeof result === 'object' && typeof result.error === 'string') {
-      throw new PenumbraError(result.error);
-    }
-    return result;
-  }
-
-  #writeFile(path, bytes) {
-    this.#withHeapCopy(bytes, (ptr) => this.#call('pv_write_file', path, ptr, bytes.length), path);
-  }
-
-  // Calls fn(ptr) with `bytes` copied into the wasm heap at ptr (freed after).
-  #withHeapCopy(bytes, fn, what = 'a file') {
-    const ptr = this.#pv.pv_alloc(bytes.length);
-    if (!ptr && bytes.length) throw new PenumbraError(`out of memory staging ${what}`);
-    try {
-      this.#mod.HEAPU8.set(bytes, ptr);
-      return fn(ptr);
-    } finally {
-      this.#pv.pv_free(ptr);
-    }
-  }
-
-  #lastError() { return this.#call('pv_last_error') || 'step failed'; }
-  #usable() { return !this.#disposed && !this.#dead && !this.#lost; }
+  #usable() { return !this.#disposed && !this.#s.dead && !this.#lost; }
   #check() {
     if (this.#disposed) throw new PenumbraError('the viewer has been disposed');
-    if (this.#dead) throw new PenumbraError(`the Penumbra module aborted: ${this.#dead}`);
+    if (this.#s.dead) throw new PenumbraError(`the Penumbra module aborted: ${this.#s.dead}`);
     if (this.#lost) throw new PenumbraError('the WebGL context is lost (waiting for restore)');
   }
   #abort(what) {
-    this.#dead = what;
     this.#running = false;
-    this.#emitError(new PenumbraError(`the Penumbra module aborted: ${what}`));
-  }
-
-  #emit(event, detail) {
-    for (const fn of this.#listeners.get(event) || []) {
-      try { fn(detail); } catch (e) { console.error(e); }  // a handler must not stop the loop
-    }
-  }
-  #emitError(e) {
-    const err = e instanceof Error ? e : new PenumbraError(String(e));
-    if (!this.#listeners.get('error')?.size) console.error(err);
-    this.#emit('error', err);
+    this.#events.emitError(new PenumbraError(`the Penumbra module aborted: ${what}`));
   }
 
   #restarted(keepStage = false) {
@@ -575,7 +429,7 @@ export class Viewer {
     }
     if (size[0] !== this.#fullSize[0] || size[1] !== this.#fullSize[1]) {
       this.#fullSize = size;
-      this.#refit = true;  // another pixel count: choose the still scale again
+      this.#adapt.refitLater();  // another pixel count: choose the still scale again
     }
   }
 
@@ -589,7 +443,7 @@ export class Viewer {
       c.width = w;
       c.height = h;
     }
-    this.#call('pv_present', c.width, c.height);
+    this.#s.call('pv_present', c.width, c.height);
     this.#needsPresent = false;
   }
 
@@ -601,7 +455,7 @@ export class Viewer {
   // to show: the loop then sleeps until a change wakes it (#restarted, setSettings, the
   // controls, a resize, resume()); also while lost, dead or benchmarking, which wake it after.
   #step = () => {
-    if (this.#disposed || !this.#running || this.#dead || this.#lost) return false;
+    if (this.#disposed || !this.#running || this.#s.dead || this.#lost) return false;
     this.#frame();
     // Auto-rotate keeps the loop awake while it waits for its delay and while it turns.
     return !(this.#stats.converged && !this.#needsPresent && !this.#cameraDirty &&
@@ -623,15 +477,7 @@ export class Viewer {
     // The still image's floor: the canvas's CSS size (its layout size where the page shows it).
     const css = this.#canvas.clientWidth;
     this.#adapt.cssScale = css > 0 ? Math.min(1, css / this.#fullSize[0]) : 1 / this.#pixelRatio();
-    if (moving) {
-      if (!this.#wasMoving) this.#adapt.startMotion(js, canvasPixels);
-      this.#wasMoving = true;
-    } else if (this.#wasMoving || this.#refit) {
-      // At rest (again): choose the still resolution from what frames cost here.
-      this.#wasMoving = false;
-      this.#refit = false;
-      this.#adapt.refit(js, canvasPixels);
-    }
+    this.#adapt.update(js, canvasPixels, moving);
     if (moving) Object.assign(this.#device, { stage: false, pendingAt: 0 });
     if (this.#device.pendingAt && now >= this.#device.pendingAt) {
       Object.assign(this.#device, { stage: true, done: false, startedAt: now, pendingAt: 0 });
@@ -644,17 +490,17 @@ export class Viewer {
     const w = Math.max(1, Math.round(this.#fullSize[0] * scale));
     const h = Math.max(1, Math.round(this.#fullSize[1] * scale));
     if (w !== this.#renderSize[0] || h !== this.#renderSize[1]) {
-      this.#call('pv_set_settings', JSON.stringify({ width: w, height: h }));
+      this.#s.call('pv_set_settings', JSON.stringify({ width: w, height: h }));
       this.#renderSize = [w, h];
       this.#haveImage = false;  // new targets: nothing to show until a frame completes
       this.#restarted(this.#device.stage);
     }
     if (this.#cameraDirty && this.#orbit) {
       const c = this.#orbit.toCamera();
-      const cam = this.#call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
+      const cam = this.#s.call('pv_set_camera', ...c.eye, ...c.target, ...c.up, c.yfov);
       this.#cameraDirty = false;
       this.#restarted();
-      this.#emit('camera', { ...cam, source: this.#cameraSource });
+      this.#events.emit('camera', { ...cam, source: this.#cameraSource });
     }
     if (!this.#sceneInfo) return;  // nothing to show yet
     // A view's first picture: frame 1 at the preview's size (a quarter of the pixels), shown at
@@ -665,7 +511,7 @@ export class Viewer {
         this.#pv.pv_frames_done() === 0) {
       this.#previewed = true;
       const start = performance.now();
-      this.#call('pv_preview');
+      this.#s.call('pv_preview');
       this.#pv.pv_sync();
       this.#stats.previewMs = performance.now() - start;
       this.#haveImage = true;
@@ -673,31 +519,16 @@ export class Viewer {
       return;
     }
 
-    let parts = 0, frames = 0;
+    let frames = 0;
     if (!this.#pv.pv_converged()) {
-      const start = performance.now();
-      let prev = start;
-      for (;;) {
-        this.#setTiles(moving);  // wasm applies it when a frame begins
-        const r = this.#pv.pv_step_part();
-        if (r < 0) throw new PenumbraError(this.#lastError());
-        if (r === 0) break;
-        this.#pv.pv_sync();
-        const t = performance.now();
-        const dt = t - prev;
-        prev = t;
-        parts++;
-        if (this.#pv.pv_last_part() === 1) this.#frameWorkMs = 0;  // a frame began
-        this.#frameWorkMs += dt;
-        if (r === 1) {
-          frames++;
-          // The still scale went down: the next tick restarts at the new size.
-          if (this.#frameCompleted(moving, canvasPixels)) break;
-        }
-        // Stop when the next part, if it costs what this one did, would overrun the budget.
-        if (this.#pv.pv_converged() || (t - start) + dt > js.budgetMs) break;
-      }
-      this.#stats.partsPerTick = parts;
+      const drawn = drawParts(this.#pv, js.budgetMs, {
+        beforePart: () => this.#setTiles(moving),  // wasm applies it when a frame begins
+        onPart: (ms, began) => { this.#frameWorkMs = (began ? 0 : this.#frameWorkMs) + ms; },
+        // True when the still scale went down: the next tick restarts at the new size.
+        onFrame: () => this.#frameCompleted(moving, canvasPixels),
+        error: () => new PenumbraError(this.#s.lastError()) });
+      frames = drawn.frames;
+      this.#stats.partsPerTick = drawn.parts;
     }
     // Only complete frames are shown: a frame in progress leaves the previous mean in place.
     if ((frames > 0 || this.#needsPresent) && this.#haveImage && !sharpening) this.#present(preview);
@@ -710,17 +541,17 @@ export class Viewer {
       Object.assign(this.#stats, { frame, total, converged: true, stage: 'device' });
       this.#present(false);
       const [width, height] = this.#renderSize;
-      this.#emit('sharpened', { frame, total, width, height,
+      this.#events.emit('sharpened', { frame, total, width, height,
                                 milliseconds: performance.now() - this.#device.startedAt });
       return;
     }
     Object.assign(this.#stats, { frame, total, stepsPerTick: frames });
-    this.#emit('progress', { frame, total });
+    this.#events.emit('progress', { frame, total });
     // A moving preview is not the result: no 'converged' for it.
     if (this.#pv.pv_converged() && !this.#stats.converged && !preview) {
       this.#stats.converged = true;
       this.#stats.convergedMs = performance.now() - this.#stats.restartedAt;
-      this.#emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
+      this.#events.emit('converged', { frame, total, milliseconds: this.#stats.convergedMs });
       const [w0, h0] = this.#renderSize;
       const full = [Math.round(this.#fullSize[0] * js.resolutionScale),
                     Math.round(this.#fullSize[1] * js.resolutionScale)];

@@ -3,7 +3,8 @@
 // it (an upper bound kept, a floor, a spike ignored), the motion scale, setting checks.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ADAPT_DEFAULTS, Adaptation, REFIT_OVER, checkJsSetting, effectivePixelRatio }
+import { ADAPT_DEFAULTS, Adaptation, REFIT_OVER, checkJsSetting, effectivePixelRatio,
+  splitSettings }
   from '../lib/adapt.mjs';
 
 const settings = (over = {}) => ({
@@ -179,4 +180,24 @@ test('the JS settings are checked with one-line messages', () => {
                "setting 'adaptiveResolution' must be true or false");
   assert.equal(checkJsSetting('adaptiveResolution', false), null);
   assert.equal(checkJsSetting('nope', 1), "unknown setting 'nope'");
+});
+
+test('setSettings splits renderer and JS settings, checks JS values, names an unknown key', () => {
+  const wasmKeys = new Set(['exposure', 'frames']);
+  assert.deepEqual(splitSettings({ exposure: 1, budgetMs: 20, frames: undefined }, wasmKeys),
+                   { wasm: { exposure: 1 }, js: { budgetMs: 20 } });
+  assert.equal(splitSettings({ nonsense: 1 }, wasmKeys).error, "unknown setting 'nonsense'");
+  assert.equal(splitSettings({ budgetMs: -1 }, wasmKeys).error, checkJsSetting('budgetMs', -1));
+});
+
+test('update: a gesture beginning fits the motion scale to frame 1, once a gesture', () => {
+  const a = new Adaptation();
+  const s = settings();
+  // Frame 1 at 4x the budget: a gesture's motion scale fits it at once.
+  a.frameDone(s, { frame: 1, ms: 48, renderPixels: PHONE, canvasPixels: PHONE, moving: false });
+  a.update(s, PHONE, true);
+  assert.ok(a.motionScale < 0.6, `motion scale ${a.motionScale}`);
+  const motion = a.motionScale;
+  a.update(s, PHONE, true);  // the same gesture: no new fit
+  assert.equal(a.motionScale, motion);
 });

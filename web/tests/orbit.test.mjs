@@ -3,7 +3,7 @@
 // (mouse drag, right drag, shift drag, wheel, one-finger orbit, two-finger pinch and pan).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { OrbitCamera, attachOrbitControls } from '../lib/orbit.mjs';
+import { OrbitCamera, attachOrbitControls, cameraFromOptions } from '../lib/orbit.mjs';
 
 const close = (a, b, eps = 1e-5) => a.every((v, i) => Math.abs(v - b[i]) <= eps);
 const bounds = { min: [-1, 0, -1], max: [1, 2, 1] };
@@ -101,4 +101,30 @@ test('touch: one finger orbits, two fingers pinch to zoom and move together to p
   assert.ok(o.target[1] > t[1], 'two-finger drag pans');
   pointer(el, 'pointerup', { id: 7, kind: 'touch' });
   pointer(el, 'pointerup', { id: 8, kind: 'touch' });
+});
+
+test('controls given a getter act on whichever camera it returns, and idle without one', () => {
+  const el = makeElement();
+  let current = null;
+  const ctl = attachOrbitControls(el, () => current);
+  pointer(el, 'pointerdown', { x: 10, y: 10 });
+  pointer(el, 'pointermove', { x: 30, y: 10 });  // no camera yet: nothing to move, no throw
+  pointer(el, 'pointerup', { x: 30, y: 10 });
+  current = OrbitCamera.fromCamera({ eye: [0, 1, 4], forward: [0, 0, -1], yfov: 0.7 }, bounds);
+  pointer(el, 'pointerdown', { x: 10, y: 10 });
+  pointer(el, 'pointermove', { x: 30, y: 10 });
+  pointer(el, 'pointerup', { x: 30, y: 10 });
+  assert.ok(current.yaw < 0, 'the camera set later orbits');
+  ctl.detach();
+});
+
+test('setCamera options: eye and target required, up and yfov defaulted, bad vectors named', () => {
+  assert.deepEqual(cameraFromOptions({ eye: [0, 0, 5], target: [0, 0, 0] }, 0.8),
+                   { eye: [0, 0, 5], target: [0, 0, 0], up: [0, 1, 0], yfov: 0.8 });
+  assert.equal(cameraFromOptions({ eye: [1, 2, 3], target: [0, 0, 0], yfov: 0.5 }, 0.8).yfov, 0.5);
+  assert.equal(cameraFromOptions(null, 0.8).error, "camera: 'eye' must be [x, y, z]");
+  assert.equal(cameraFromOptions({ eye: [0, 0, 5], target: [0, NaN, 0] }, 0.8).error,
+               "camera: 'target' must be [x, y, z]");
+  assert.equal(cameraFromOptions({ eye: [0, 0, 5], target: [0, 0, 0], up: [0, 1] }, 0.8).error,
+               "camera: 'up' must be [x, y, z]");
 });
