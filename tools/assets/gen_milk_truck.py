@@ -6,7 +6,10 @@ Not a committed asset: it is converted on demand from Debian's `assimp-testmodel
 `assimp-utils`. `assimp export ... -fglb2` writes it as glTF 2.0 (a .glb that references the
 923 KB texture atlas beside it; the wheels are instanced nodes). Beside them goes
 `milk_truck.json`: the model under the studio sky (assets/env/studio_sky.hdr, its sun
-included) at 640x360, the size issue #36 asks for.
+included) at 640x360, the size issue #36 asks for, seen through a camera added to the .glb (a
+three-quarter view whose bounding sphere fills the height): an A/B of two revisions
+(tools/ab-bench) must shade the same pixels on both sides, and the default framing is code
+that changes between revisions.
 
   tools/assets/gen_milk_truck.py [--out-dir DIR]     (default: build/real-models/milk_truck)
 
@@ -14,13 +17,106 @@ Exits 1 with one line when the package or the converter is missing.
 """
 import argparse
 import json
+import math
 import os
 import shutil
+import struct
 import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SOURCE = '/usr/share/assimp/models/glTF/CesiumMilkTruck'
+
+
+def _mat_mul(a, b):  # column-major 4x4
+    return [sum(a[k * 4 + r] * b[c * 4 + k] for k in range(4)) for c in range(4) for r in range(4)]
+
+
+def _node_matrix(node):
+    if 'matrix' in node:
+        return list(node['matrix'])
+    x, y, z, w = node.get('rotation', [0, 0, 0, 1])
+    sx, sy, sz = node.get('scale', [1, 1, 1])
+    t = node.get('translation', [0, 0, 0])
+    r = [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+         2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+         2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)]
+    return [r[0] * sx, r[1] * sx, r[2] * sx, 0, r[3] * sy, r[4] * sy, r[5] * sy, 0,
+            r[6] * sz, r[7] * sz, r[8] * sz, 0, t[0], t[1], t[2], 1]
+
+
+def _world_bounds(doc):
+    lo, hi = [math.inf] * 3, [-math.inf] * 3
+
+    def visit(i, parent):
+        node = doc['nodes'][i]
+        m = _mat_mul(parent, _node_matrix(node))
+        if 'mesh' in node:
+            for prim in doc['meshes'][node['mesh']]['primitives']:
+                acc = doc['accessors'][prim['attributes']['POSITION']]
+                a, b = acc['min'], acc['max']
+                for c in range(8):
+                    p = [(b if c >> k & 1 else a)[k] for k in range(3)]
+                    w = [m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]
+                         for r in range(3)]
+                    for k in range(3):
+                        lo[k], hi[k] = min(lo[k], w[k]), max(hi[k], w[k])
+        for child in node.get('children', []):
+            visit(child, m)
+
+    for root in doc['scenes'][doc.get('scene', 0)]['nodes']:
+        visit(root, [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+    return lo, hi
+
+
+def _quaternion(right, up, back):  # of the rotation whose columns are the three axes
+    m00, m11, m22 = right[0], up[1], back[2]
+    tr = m00 + m11 + m22
+    if tr > 0:
+        s = 2 * math.sqrt(tr + 1)
+        return [(up[2] - back[1]) / s, (back[0] - right[2]) / s, (right[1] - up[0]) / s, s / 4]
+    if m00 > m11 and m00 > m22:
+        s = 2 * math.sqrt(1 + m00 - m11 - m22)
+        return [s / 4, (up[0] + right[1]) / s, (back[0] + right[2]) / s, (up[2] - back[1]) / s]
+    if m11 > m22:
+        s = 2 * math.sqrt(1 + m11 - m00 - m22)
+        return [(up[0] + right[1]) / s, s / 4, (back[1] + up[2]) / s, (back[0] - right[2]) / s]
+    s = 2 * math.sqrt(1 + m22 - m00 - m11)
+    return [(back[0] + right[2]) / s, (back[1] + up[2]) / s, s / 4, (right[1] - up[0]) / s]
+
+
+def add_camera(glb_path, aspect):
+    """A perspective camera in the .glb: a three-quarter view from the front right and a little
+    above, at the distance where the bounding sphere fills the vertical field of view."""
+    data = open(glb_path, 'rb').read()
+    json_len = struct.unpack_from('<I', data, 12)[0]
+    doc = json.loads(data[20:20 + json_len])
+    rest = data[20 + json_len:]
+    lo, hi = _world_bounds(doc)
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    radius = math.dist(lo, hi) / 2
+    yfov = 0.6
+    d = [1.0, 0.45, 1.3]
+    n = math.sqrt(sum(x * x for x in d))
+    back = [x / n for x in d]
+    dist = radius / math.sin(yfov / 2)
+    right = [back[2], 0.0, -back[0]]
+    rn = math.sqrt(sum(x * x for x in right))
+    right = [x / rn for x in right]
+    up = [back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
+          back[0] * right[1] - back[1] * right[0]]
+    doc.setdefault('cameras', []).append(
+        {'type': 'perspective', 'name': 'benchmark',
+         'perspective': {'yfov': yfov, 'aspectRatio': aspect, 'znear': radius / 100}})
+    doc['nodes'].append({'name': 'benchmark camera', 'camera': len(doc['cameras']) - 1,
+                         'translation': [c + dist * b for c, b in zip(centre, back)],
+                         'rotation': _quaternion(right, up, back)})
+    doc['scenes'][doc.get('scene', 0)]['nodes'].append(len(doc['nodes']) - 1)
+    text = json.dumps(doc).encode()
+    text += b' ' * (-len(text) % 4)
+    body = struct.pack('<II', len(text), 0x4E4F534A) + text + rest
+    with open(glb_path, 'wb') as f:
+        f.write(struct.pack('<III', 0x46546C67, 2, 12 + len(body)) + body)
 
 
 def main():
@@ -41,6 +137,7 @@ def main():
     if done.returncode != 0 or not os.path.isfile(glb):
         sys.exit('gen_milk_truck: assimp export failed: %s' %
                  (done.stderr.strip().splitlines() or ['no output'])[-1])
+    add_camera(glb, 640 / 360)
     shutil.copyfile(os.path.join(SOURCE, 'CesiumMilkTruck.png'),
                     os.path.join(a.out_dir, 'CesiumMilkTruck.png'))
     scene = {
@@ -49,6 +146,7 @@ def main():
         'gltf': 'milk_truck.glb',
         'environment': {'file': os.path.join(ROOT, 'assets', 'env', 'studio_sky.hdr')},
         'resolution': [640, 360],
+        'camera': 'benchmark',
     }
     with open(os.path.join(a.out_dir, 'milk_truck.json'), 'w') as f:
         json.dump(scene, f, indent=2)
