@@ -26,11 +26,18 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
+constexpr int kReferenceCap = 4096;  // the reference run's maxFrames (never reached)
+
 struct Options {
   int width = 640, height = 360, frames = 1024;
   std::string environment;
   bool trace = false;
   std::string images;  // a folder for each scene's reference and stop images
+  // A TSV file: each checkpoint of the reference run (no stop, no tile skipped), the rule's
+  // estimate beside the truth, for trying stopping rules offline; with referenceOnly the
+  // automatic view is not rendered.
+  std::string checkpoints;
+  bool referenceOnly = false;
   std::vector<std::pair<std::string, std::string>> settings;
 };
 
@@ -96,19 +103,38 @@ Status save(const oracle::Frame8& f, const std::string& path) {
   return writeImage(path, img);
 }
 
+// One line a checkpoint: scene, its oracle frame, the reference run's cap, the checkpoint, the
+// rule's estimate (RMS, tiles' p99: as displayed, margin and rounding included), the measured
+// decay, and the truth (the displayed image against the reference's last frame).
+Status writeCheckpoints(const Options& o, const std::string& scene, int oracleFrame,
+                        const std::vector<ConvergenceInfo>& measured,
+                        const std::vector<oracle::Difference>& diffs) {
+  std::FILE* f = std::fopen(o.checkpoints.c_str(), "a");
+  if (!f) return makeError("cannot write " + o.checkpoints);
+  const std::string name = scene.substr(scene.find_last_of('/') + 1);
+  for (const ConvergenceInfo& c : measured) {
+    const auto& d = diffs[static_cast<size_t>(c.frame - 1)];
+    std::fprintf(f, "%s\t%d\t%d\t%d\t%.4f\t%.4f\t%.4f\t%.4f\t%.4f\n", name.c_str(),
+                 oracleFrame, kReferenceCap, c.frame, c.error, c.tileError, c.decay, d.rms,
+                 d.tileP99);
+  }
+  return std::fclose(f) == 0 ? Status{} : makeError("cannot write " + o.checkpoints);
+}
+
 Result<Row> measure(const std::string& scene, const Options& o) {
   Row row;
   // The automatic plan run to the cap: never measured converged (the smallest threshold; a view
   // that meets even that has stopped changing), no tile skipped.
   std::vector<oracle::Frame8> frames;
   std::vector<double> elapsed;
+  std::vector<ConvergenceInfo> measured;  // the reference run's checkpoints
   {
     // (A larger cap: the same plan up to --frames, and no "little left to change before the
     // cap" that would end it sooner.)
     auto r = open(scene, o,
                   {{"convergenceThreshold", "0.125"},
                    {"skipConvergedTiles", "false"},
-                   {"maxFrames", std::to_string(std::max(4096, o.frames))}});
+                   {"maxFrames", std::to_string(std::max(kReferenceCap, o.frames))}});
     if (!r) return r.error();
     double t = 0;
     while (!(*r)->converged() && (*r)->framesDone() < o.frames) {
@@ -116,6 +142,8 @@ Result<Row> measure(const std::string& scene, const Options& o) {
       if (!s) return s.error();
       t += *s;
       elapsed.push_back(t);
+      const ConvergenceInfo c = (*r)->convergence();
+      if (c.measured && c.frame == (*r)->framesDone()) measured.push_back(c);
       auto f = display(**r);
       if (!f) return f.error();
       frames.push_back(std::move(*f));
@@ -133,6 +161,8 @@ Result<Row> measure(const std::string& scene, const Options& o) {
                 row.oracle - 1, d.rms, d.tileP99);
   }
   row.oracleS = row.oracle > 0 ? elapsed[static_cast<size_t>(row.oracle - 1)] : 0.0;
+  if (!o.checkpoints.empty()) PN_TRY(writeCheckpoints(o, scene, row.oracle, measured, diffs));
+  if (o.referenceOnly) return row;
   frames.resize(1);  // frame 1, for the grain
   // The automatic view as a user gets it.
   auto r = open(scene, o, {});
@@ -203,6 +233,11 @@ int main(int argc, char** argv) {
                  "environment for every scene: none, studio, r,g,b or an HDR or packed file");
   app.add_option("--images", o.images, "write each scene's reference and stop images here");
   app.add_flag("--trace", o.trace, "print each checkpoint's estimate beside the true error");
+  app.add_option("--checkpoints", o.checkpoints,
+                 "append the reference run's checkpoints to this TSV file: scene, oracle frame, "
+                 "cap, frame, estimate RMS and tile p99, decay, true RMS and tile p99");
+  app.add_flag("--reference-only", o.referenceOnly,
+               "render only the reference run (the oracle frame; no automatic view)");
   std::vector<std::string> extra;
   app.add_option("--set", extra, "KEY=VALUE: a setting for every run, as in the scene file");
   CLI11_PARSE(app, argc, argv);
