@@ -410,13 +410,14 @@ TEST_F(RendererGLTest, OverlappingSurfacesShowTheNearestWhateverTheDrawOrder) {
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_EQ(a->pixels, b->pixels);
   // The top square (side 2, albedo 0.2, open sky above) covers the central pixels: under a
-  // uniform sky of 1 they all show the same radiance, its albedo plus its (F0 0.04) specular
-  // reflection, well below the squares under it (0.5 and 0.8).
+  // uniform sky of 1 they all show about the same radiance, its albedo plus its (F0 0.04)
+  // specular reflection, well below the squares under it (0.5 and 0.8). (The probe volume's
+  // layer above the stack, still filling after 4 frames, varies it by about 0.1 %.)
   const float centre = a->pixel(20, 20)[1];
   EXPECT_GT(centre, 0.2f);
   EXPECT_LT(centre, 0.25f);
   for (int y = 14; y < 26; ++y) {
-    for (int x = 14; x < 26; ++x) EXPECT_NEAR(a->pixel(x, y)[1], centre, 1e-4f) << x << "," << y;
+    for (int x = 14; x < 26; ++x) EXPECT_NEAR(a->pixel(x, y)[1], centre, 1e-3f) << x << "," << y;
   }
 }
 

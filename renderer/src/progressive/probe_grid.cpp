@@ -9,6 +9,9 @@
 namespace penumbra::progressive {
 namespace {
 
+// Thinner than this many cells, an axis gets two layers of probes outside the slab.
+constexpr float kThinSlab = 0.25f;
+
 // Lays out `n` probes along one axis of `extent` from `lo`: the outer ones kProbeClearance of a
 // spacing inside the bounds (half a cell left the volume's outer probes far from the walls,
 // and their lookups near a wall saw the far side of the room with too much weight: the closed
@@ -57,7 +60,18 @@ ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts) {
     int n = counts[a] > 0 ? counts[a] : static_cast<int>(std::lround(extent[a] / cellSize));
     n = std::clamp(n, 1, 64);
     g.counts[a] = n;
-    if (extent[a] > 1e-6f * longest) {
+    if (counts[a] <= 0 && extent[a] < kThinSlab * cellSize && extent[a] > 1e-6f * longest) {
+      // A slab under a quarter of a cell thick (quads before a backdrop, a sign, a relief):
+      // one layer at its centre, within an eighth of a cell of both faces, sampled the gap
+      // between them and not the space its surfaces face (the plane 2.5-5 cm behind
+      // TextureCoordinateTest's quads came out near black). Two layers outside it, half a
+      // cell from its faces, each see one side. Thicker slabs (a row of spheres a third of a
+      // cell thick, objects on a wide floor) keep their layer among their objects: the
+      // material grid's, moved outside, came out 6 % further from Cycles.
+      g.counts[a] = 2;
+      g.spacing[a] = extent[a] + cellSize;
+      g.origin[a] = box.min[a] - 0.5f * cellSize;
+    } else if (extent[a] > 1e-6f * longest) {
       layAxis(box.min[a], extent[a], n, g.spacing[a], g.origin[a]);
     } else {
       // A flat axis (a ground plane alone) keeps the cell size, so biases stay finite.
