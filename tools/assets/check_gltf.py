@@ -20,6 +20,10 @@ import os
 import struct
 import sys
 
+# The EXT_lights_area shapes this reader knows: renderer/src/scene/light_kinds.cpp's area rows
+# (tests/cli/light_readers.sh fails when a shape there is missing here).
+AREA_SHAPES = ('rect', 'disk')
+
 COMP = {5120: ("b", 1), 5121: ("B", 1), 5122: ("h", 2), 5123: ("H", 2), 5125: ("I", 4),
         5126: ("f", 4)}
 NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
@@ -238,7 +242,7 @@ class Checker:
                 self.err("camera %d malformed" % i)
         self.lights = doc.get("extensions", {}).get("EXT_lights_area", {}).get("lights", [])
         for i, lt in enumerate(self.lights):
-            ok = lt.get("type") in ("rect", "disk") and lt.get("size", 1.0) > 0 and \
+            ok = lt.get("type") in AREA_SHAPES and lt.get("size", 1.0) > 0 and \
                 lt.get("intensity", 1000.0) > 0 and \
                 all(0 <= c <= 1 for c in lt.get("color", [1, 1, 1])) and \
                 (lt["type"] != "rect" or "rect" in lt)

@@ -146,6 +146,9 @@ def world_matrices(g):
 
 
 # glTF (x, y, z) -> Blender (x, -z, y): a rotation of +90 degrees about X.
+# The EXT_lights_area shapes this reader knows: renderer/src/scene/light_kinds.cpp's area rows
+# (tests/cli/light_readers.sh fails when a shape there is missing here).
+AREA_SHAPES = ('rect', 'disk')
 GLTF_TO_BLENDER = mathutils.Matrix(((1, 0, 0, 0), (0, 0, -1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
 
 
@@ -243,6 +246,8 @@ def main():
             continue
         L = lights[ext["light"]]
         kind = L.get("type", "rect")
+        if kind not in AREA_SHAPES:
+            raise ValueError("EXT_lights_area light of unknown type %r" % kind)
         size = float(L.get("size", 1.0))
         color = L.get("color", [1.0, 1.0, 1.0])
         nits = float(L.get("intensity", 1.0))

@@ -21,6 +21,10 @@ import { HDRLoader } from 'three/examples/jsm/loaders/HDRLoader.js';
 import { FullScreenQuad } from 'three/examples/jsm/postprocessing/Pass.js';
 import { ShapedAreaLight, WebGLPathTracer } from 'three-gpu-pathtracer';
 
+// The EXT_lights_area shapes this reader knows: renderer/src/scene/light_kinds.cpp's area rows
+// (tests/cli/light_readers.sh fails when a shape there is missing here).
+export const AREA_SHAPES = ['rect', 'disk'];
+
 export const TONE_MAPPERS = {
   'pbr-neutral': THREE.NeutralToneMapping, aces: THREE.ACESFilmicToneMapping,
   reinhard: THREE.ReinhardToneMapping, none: THREE.LinearToneMapping,
@@ -40,6 +44,7 @@ export async function addAreaLights(gltf, proxies = []) {
     const index = nodes[i].extensions?.EXT_lights_area?.light;
     if (index === undefined || !defs[index]) continue;
     const def = defs[index];
+    if (!AREA_SHAPES.includes(def.type ?? 'rect')) continue;  // Penumbra rejects the file
     const node = await gltf.parser.getDependency('node', i);
     const pos = new THREE.Vector3(), quat = new THREE.Quaternion(), scl = new THREE.Vector3();
     node.matrixWorld.decompose(pos, quat, scl);
