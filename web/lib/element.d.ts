@@ -23,7 +23,10 @@ export interface PenumbraViewerEventMap {
   error: CustomEvent<PenumbraViewerErrorDetail>;
   /** A frame completed: frame of total (totalProgress: frame / total, never going back and
    *  rising at most 0.25 a frame, as the total of an automatic view is an estimate). */
-  progress: CustomEvent<{ frame: number; total: number; totalProgress: number }>;
+  /** The download, as model-viewer's: 0 as it begins, 1 once the scene is loaded. */
+  progress: CustomEvent<{ totalProgress: number }>;
+  /** The refinement after each rendered frame (totalProgress never goes back). */
+  'refine-progress': CustomEvent<{ frame: number; total: number; totalProgress: number }>;
   /** Once per view (scene, camera, settings that restart). */
   converged: CustomEvent<{ frame: number; total: number; milliseconds: number }>;
 }

@@ -107,10 +107,14 @@ const TEMPLATE = `<style>
   canvas.inert { pointer-events: none; }
   .poster { object-fit: contain; background: inherit; }
   [hidden] { display: none; }
-</style><canvas part="canvas"></canvas><img part="poster" class="poster" alt="" hidden>`;
+  .bar { position: absolute; top: 0; left: 0; right: 0; height: 4px; pointer-events: none; }
+  .bar > div { height: 100%; width: 0; background: rgba(0, 0, 0, 0.4); transition: width 0.1s; }
+</style><canvas part="canvas"></canvas><img part="poster" class="poster" alt="" hidden>
+<slot name="progress-bar"><div part="default-progress-bar" class="bar" hidden><div
+  part="default-progress-mask"></div></div></slot>`;
 
 export class PenumbraViewerElement extends HTMLElement {
-  #canvas; #poster;
+  #canvas; #poster; #bar;  // #bar: the default download bar (slot "progress-bar" replaces it)
   #viewer = null; #startFailed = false;
   #visible = false;            // on screen (IntersectionObserver)
   #interacted = false;         // reveal="interaction": the user clicked or pressed a key
@@ -130,6 +134,7 @@ export class PenumbraViewerElement extends HTMLElement {
     this.attachShadow({ mode: 'open' }).innerHTML = TEMPLATE;
     this.#canvas = this.shadowRoot.querySelector('canvas');
     this.#poster = this.shadowRoot.querySelector('.poster');
+    this.#bar = this.shadowRoot.querySelector('.bar');
     this.#resetApplied();
     const reveal = (e) => {
       if (e.type === 'keydown' && e.key !== 'Enter' && e.key !== ' ') return;
@@ -267,7 +272,8 @@ export class PenumbraViewerElement extends HTMLElement {
       }
       this.#setModelVisible(true);
       const { percent } = this.#meter.update({ ...d, converged: false, frameMs: 0 });
-      this.#dispatch('progress', { ...d, totalProgress: percent / 100 });
+      // The refinement; 'progress' is the download's, as model-viewer's.
+      this.#dispatch('refine-progress', { ...d, totalProgress: percent / 100 });
     });
     v.on('converged', (d) => this.#dispatch('converged', d));
     v.on('camera', (d) => this.#dispatch('camera-change', { source: d.source }));
@@ -349,8 +355,11 @@ export class PenumbraViewerElement extends HTMLElement {
     if (want === null) return null;  // the canvas is hidden (#updateRunning): nothing to show
     let info;
     try {
-      info = await v.loadScene(want);
+      this.#downloaded(0);
+      info = await v.loadScene(want, { onProgress: (p) => this.#downloaded(p) });
+      this.#downloaded(1);
     } catch (e) {
+      this.#bar.hidden = true;
       this.#fail('loadfailure', e);  // the previous scene, if any, stays on screen
       return null;
     }
@@ -367,6 +376,14 @@ export class PenumbraViewerElement extends HTMLElement {
       await this.#applyEnvironment(v);
     }
     return want;
+  }
+
+  // model-viewer's 'progress' {totalProgress} (0 as the download begins, 1 once loaded), and
+  // the default bar showing it until then.
+  #downloaded(p) {
+    this.#dispatch('progress', { totalProgress: p });
+    this.#bar.hidden = p >= 1;
+    this.#bar.firstElementChild.style.width = `${Math.round(p * 100)}%`;
   }
 
   #applyVariant(v) {

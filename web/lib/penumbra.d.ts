@@ -268,7 +268,9 @@ export declare class Viewer {
    * Draco- or meshopt-compressed meshes first fetch their decoder from `decoders/` next to this
    * module (once per page; rejects with a PenumbraError if it cannot be fetched).
    */
-  loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource> }): Promise<SceneInfo>;
+  /** onProgress: the download's progress, 0 to under 1, never going back (model-viewer's totalProgress). */
+  loadScene(source: Source, options?: { name?: string; resources?: Record<string, ByteSource>;
+                                        onProgress?: (progress: number) => void }): Promise<SceneInfo>;
   /**
    * Packed .hdr (penumbra-prefilter), a panorama (.hdr/.png, prefiltered on load), [r, g, b],
    * 'studio' (the built-in neutral studio), or null: forget the environment set here and light

@@ -21,7 +21,8 @@ import { Emitter, WasmSession } from './session.mjs';
 import { OrbitCamera, attachOrbitControls, cameraFromOptions } from './orbit.mjs';
 import { FrameLoop, drawParts } from './loop.mjs';
 import { AutoRotate } from './autorotate.mjs';
-import { PenumbraError, fetchBytes, gatherScene, sourceName, toBytes } from './staging.mjs';
+import { DownloadProgress, PenumbraError, fetchBytes, gatherScene, sourceName, toBytes }
+  from './staging.mjs';
 import { version } from './version.mjs';  // written by CMake from the project's version
 
 export { PenumbraError, version };
@@ -154,16 +155,19 @@ export class Viewer {
 
   // Loads a scene file (.json), a .gltf or a .glb from a URL, bytes or a File. `resources`
   // maps file names to bytes for a .gltf's external files when they do not come from a URL.
-  async loadScene(source, { name, resources } = {}) {
+  // onProgress(p) follows the download (DownloadProgress: 0 to under 1, never going back).
+  async loadScene(source, { name, resources, onProgress } = {}) {
     this.#check();
+    const progress = onProgress ? new DownloadProgress(onProgress) : null;
     let main;
     if (typeof source === 'string' || source instanceof URL) {
       const url = new URL(String(source), location.href).href;
-      main = { url, bytes: await fetchBytes(url), name: name || sourceName(url, 'scene') };
+      const bytes = await fetchBytes(url, progress?.file(url));
+      main = { url, bytes, name: name || sourceName(url, 'scene') };
     } else {
       main = { bytes: await toBytes(source), name: name || sourceName(source, 'scene') };
     }
-    const staged = await gatherScene(main, resources || {});
+    const staged = await gatherScene(main, resources || {}, progress);
     await provideDecoders(this.#s.mod, staged.files);  // Draco/meshopt, only when the file needs them
     this.#check();
     // The automatic framing fits a model to the render size's aspect (RenderJob): the canvas's.

@@ -26,7 +26,9 @@ export async function toBytes(source) {
   throw new PenumbraError('expected a URL, an ArrayBuffer, a typed array or a Blob');
 }
 
-export async function fetchBytes(url) {
+// `onBytes(received, total)`, when given, follows the download (total: the Content-Length, 0
+// when the server does not say).
+export async function fetchBytes(url, onBytes = null) {
   let response;
   try {
     response = await fetch(url);
@@ -36,7 +38,40 @@ export async function fetchBytes(url) {
   if (!response.ok) {
     throw new PenumbraError(`cannot fetch ${url}: HTTP ${response.status} ${response.statusText}`.trim());
   }
-  return new Uint8Array(await response.arrayBuffer());
+  if (!onBytes || !response.body?.getReader) return new Uint8Array(await response.arrayBuffer());
+  const total = Number(response.headers.get('content-length')) || 0;
+  const reader = response.body.getReader();
+  const chunks = [];
+  let received = 0;
+  onBytes(0, total);
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    chunks.push(value);
+    received += value.length;
+    onBytes(received, total);
+  }
+  const bytes = new Uint8Array(received);
+  let at = 0;
+  for (const c of chunks) { bytes.set(c, at); at += c.length; }
+  return bytes;
+}
+
+// A scene's download as model-viewer reports it (its 'progress' event's totalProgress): the
+// bytes received over those expected of every file fetched so far, never going back, below 1
+// until the scene is loaded (the caller reports 1 then). file(url) gives fetchBytes' onBytes.
+export class DownloadProgress {
+  #files = new Map(); #last = 0; #report;
+  constructor(report) { this.#report = report; }
+  file(url) {
+    return (received, total) => {
+      this.#files.set(url, [received, Math.max(received, total)]);
+      let got = 0, expected = 0;
+      for (const [r, t] of this.#files.values()) { got += r; expected += t; }
+      const p = expected > 0 ? Math.min(0.99, got / expected) : 0;
+      if (p > this.#last) { this.#last = p; this.#report(p); }
+    };
+  }
 }
 
 // Why a fetch rejected, in words. The browser says only "Failed to fetch" both for a network
@@ -122,13 +157,13 @@ const decodePath = (p) => { try { return decodeURIComponent(p); } catch { return
 const DEPTH = ['s1', 's2', 's3', 's4'];
 
 // Collects the files of a scene. `main` is {bytes, name, url?}; `resources` maps file names
-// (as referenced, or their base names) to byte sources, for dropped file sets. Returns
-// {mainPath, files: [{path, bytes}], kind}.
-export async function gatherScene(main, resources = {}) {
+// (as referenced, or their base names) to byte sources, for dropped file sets; `progress` (a
+// DownloadProgress) follows the files fetched. Returns {mainPath, files: [{path, bytes}], kind}.
+export async function gatherScene(main, resources = {}, progress = null) {
   const files = [];
   const seen = new Set();
   const lookup = async (relPath, url) => {
-    if (url) return fetchBytes(url);
+    if (url) return fetchBytes(url, progress?.file(url));
     const key = [relPath, basename(relPath), decodePath(relPath), basename(decodePath(relPath))]
       .find((k) => k in resources);
     if (key === undefined) {

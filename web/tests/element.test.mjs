@@ -38,7 +38,10 @@ const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</
     el.addEventListener('load', (e) => el.log.load.push(e.detail.url));
     el.addEventListener('error', (e) => el.log.error.push({ type: e.detail.type, message: e.detail.message }));
     el.addEventListener('converged', () => el.log.converged++);
-    el.addEventListener('progress', () => el.log.progress++);
+    el.addEventListener('refine-progress', () => el.log.progress++);  // frames drawn
+    el.log.download = [];  // model-viewer's 'progress': the download's totalProgress
+    el.addEventListener('progress', (e) => el.log.download.push(e.detail.totalProgress));
+    el.addEventListener('load', () => el.log.download.push('load'));
     el.log.camera = [];
     el.log.visibility = [];
     el.log.posterDismissed = 0;
@@ -260,7 +263,7 @@ test('loading="lazy" creates nothing off-screen; an eager element loads but draw
                eagerFrame: eager.viewer.state.frame, eagerPaused: eager.viewer.state.paused };
     });
     assert.deepEqual(off.lazyLog, { load: [], error: [], converged: 0, progress: 0, camera: [],
-                                   visibility: [], posterDismissed: 0 });
+                                   visibility: [], posterDismissed: 0, download: [] });
     assert.equal(off.lazyViewer, true, 'a lazy element off-screen has no viewer yet');
     assert.equal(off.eagerLog.load.length, 1, 'the eager element loaded its scene');
     assert.equal(off.eagerLog.progress, 0, 'and drew no frame off-screen');
@@ -476,3 +479,34 @@ test('auto-rotate turns the view once left alone and stops on a drag; model-view
     assert.equal(mine.length, 2, mine.join('\n'));
   });
 });
+
+test('progress is the download\'s, as model-viewer\'s: 0 first, never back, 1 before load; the bar and its slot', { timeout: TEST_MS }, async () => {
+  await withTestPage('download', async (pg) => {
+    await pg.evaluate((src) => window.add(`<penumbra-viewer id="d" class="small" src="${src}" frames="4"
+      adaptive-resolution="false"></penumbra-viewer>`), GRID);
+    const log = await waitConverged(pg, '#d', 1);
+    const events = log.download;
+    assert.equal(events[0], 0, `the download begins at 0: ${JSON.stringify(events)}`);
+    const load = events.indexOf('load');
+    assert.ok(load > 1 && events[load - 1] === 1, `1 comes before load: ${JSON.stringify(events)}`);
+    const values = events.slice(0, load);
+    for (let i = 1; i < values.length; ++i) {
+      assert.ok(values[i] >= values[i - 1], `never going back: ${JSON.stringify(values)}`);
+    }
+    assert.ok(log.progress >= 4, 'the refinement has its own event (refine-progress)');
+    const bar = await pg.evaluate(() => {
+      const b = document.querySelector('#d').shadowRoot.querySelector('[part="default-progress-bar"]');
+      return { hidden: b.hidden, width: b.firstElementChild.style.width };
+    });
+    assert.deepEqual(bar, { hidden: true, width: '100%' }, 'the default bar is full and gone once loaded');
+    // A page's own bar in slot "progress-bar" replaces the default one.
+    const slotted = await pg.evaluate((src) => {
+      const el = window.add(`<penumbra-viewer class="small" src="${src}"><div slot="progress-bar"
+        id="mine"></div></penumbra-viewer>`);
+      const slot = el.shadowRoot.querySelector('slot[name="progress-bar"]');
+      return slot.assignedElements().map((e) => e.id);
+    }, GRID);
+    assert.deepEqual(slotted, ['mine']);
+  });
+});
+
