@@ -10,6 +10,10 @@ uniform sampler2D uRays;     // rgb: the correction, a: +-linear depth (+ blocke
 uniform sampler2D uPrepass;  // full resolution: xyz view normal, w linear depth
 uniform int uBlock;
 uniform float uStrength;
+// Separable: along rows (0), then along the first pass's result down columns (1), five blocks
+// each: the 5x5 neighbourhood for 20 fetches a pixel where one 5x5 pass took 50 (and 25 ms a
+// frame at 1280x720 on a software rasterizer).
+uniform int uVertical;
 out vec4 fragColor;
 
 const int RADIUS = 2;
@@ -22,22 +26,26 @@ vec3 blockNormal(ivec2 b) {
 void main() {
   ivec2 c = ivec2(gl_FragCoord.xy);
   ivec2 size = textureSize(uRays, 0);
+  ivec2 along = uVertical != 0 ? ivec2(0, 1) : ivec2(1, 0);
   vec4 centre = texelFetch(uRays, c, 0);
   float z = abs(centre.a);
   vec3 n = blockNormal(c);
   vec3 sum = centre.rgb;
   float total = 1.0;
-  for (int dy = -RADIUS; dy <= RADIUS; ++dy) {
-    for (int dx = -RADIUS; dx <= RADIUS; ++dx) {
-      ivec2 q = clamp(c + ivec2(dx, dy), ivec2(0), size - 1);
-      vec4 s = texelFetch(uRays, q, 0);
-      float reach = float(max(abs(dx), abs(dy)));
-      float sameDepth = step(abs(abs(s.a) - z), 0.03 * z * reach) * step(1e-6, abs(s.a));
-      float sameNormal = pow(saturate(dot(blockNormal(q), n)), 16.0);
-      float w = (dx == 0 && dy == 0) ? 0.0 : uStrength * sameDepth * sameNormal;
-      sum += w * s.rgb;
-      total += w;
-    }
+  for (int k = -RADIUS; k <= RADIUS; ++k) {
+    if (k == 0) continue;
+    ivec2 q = clamp(c + k * along, ivec2(0), size - 1);
+    vec4 s = texelFetch(uRays, q, 0);
+    float sameDepth = step(abs(abs(s.a) - z), 0.03 * z * float(abs(k))) * step(1e-6, abs(s.a));
+    float cosine = saturate(dot(blockNormal(q), n));
+    cosine *= cosine;
+    cosine *= cosine;
+    cosine *= cosine;
+    cosine *= cosine;  // ^16: normals within about 20 degrees
+    float w = uStrength * sameDepth * cosine;
+    sum += w * s.rgb;
+    total += w;
   }
+  // (The depth in alpha passes through: the second pass tests against it.)
   fragColor = z > 0.0 ? vec4(sum / total, centre.a) : centre;
 }

@@ -80,16 +80,21 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
 
 void OcclusionPass::filter(const OcclusionInputs& in) {
   RenderTargets& t = *in.targets;
-  t.occlusionFiltered.framebuffer.bind();
   const gl::Program& p = filter_.begin();
-  t.occlusion.color.bind(kUnitOcclusion);
   t.prepass.color.bind(kUnitPrepass);
   p.set("uRays", kUnitOcclusion);
   p.set("uPrepass", kUnitPrepass);
   p.set("uBlock", in.block);
   p.set("uStrength", in.filter);
+  // Along rows into the spare target, then down columns back into the one the lighting reads.
+  t.occlusionFiltered.framebuffer.bind();
+  t.occlusion.color.bind(kUnitOcclusion);
+  p.set("uVertical", 0);
   filter_.draw();
-  std::swap(t.occlusion, t.occlusionFiltered);  // the lighting pass reads t.occlusion
+  t.occlusion.framebuffer.bind();
+  t.occlusionFiltered.color.bind(kUnitOcclusion);
+  p.set("uVertical", 1);
+  filter_.draw();
 }
 
 }  // namespace penumbra::passes

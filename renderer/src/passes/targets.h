@@ -43,7 +43,7 @@ struct RenderTargets {
   // This frame's diffuse occlusion rays (OcclusionPass), a ray per block of block x block
   // pixels: ceil(width / block) x ceil(height / block), prepassFormat. Made on first use.
   ColorTarget occlusion;
-  ColorTarget occlusionFiltered;  // the early frames' filtered rays, swapped into `occlusion`
+  ColorTarget occlusionFiltered;  // the early frames' ray filter's first (row) pass
   int occlusionBlock = 0;
   int occlusionWidth(int block) const { return (width + block - 1) / block; }
   int occlusionHeight(int block) const { return (height + block - 1) / block; }
