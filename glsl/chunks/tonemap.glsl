@@ -1,9 +1,6 @@
 // Display transforms: exposure, then Khronos PBR Neutral (default), ACES fitted (Hill),
-// Reinhard or none, then the sRGB transfer curve.
-const int TONEMAP_PBR_NEUTRAL = 0;
-const int TONEMAP_ACES = 1;
-const int TONEMAP_REINHARD = 2;
-const int TONEMAP_NONE = 3;
+// Reinhard or none, then the sRGB transfer curve. The operators' codes are generated from the
+// C++ enum (PN_TONEMAP_*, passes/limits.h commonDefines).
 
 vec3 pbrNeutral(vec3 color) {
   const float startCompression = 0.8 - 0.04;
@@ -32,9 +29,9 @@ vec3 acesFitted(vec3 color) {
 }
 
 vec3 toneMap(vec3 color, int op) {
-  if (op == TONEMAP_PBR_NEUTRAL) return pbrNeutral(color);
-  if (op == TONEMAP_ACES) return acesFitted(color);
-  if (op == TONEMAP_REINHARD) return color / (1.0 + color);
+  if (op == PN_TONEMAP_PBR_NEUTRAL) return pbrNeutral(color);
+  if (op == PN_TONEMAP_ACES) return acesFitted(color);
+  if (op == PN_TONEMAP_REINHARD) return color / (1.0 + color);
   return color;
 }
 

@@ -2,6 +2,8 @@
 // areas and sample points that agree with each shape.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "passes/limits.h"
 #include "scene/light_kinds.h"
 
@@ -57,6 +59,19 @@ TEST(LightKindsTest, EveryShaderGetsEachKindsCodeByName) {
   EXPECT_EQ(value("PN_LIGHT_SPOT"), std::to_string(lightKind(LightType::Spot).shaderCode));
   EXPECT_EQ(value("PN_LIGHT_DIRECTIONAL"), "2");
   EXPECT_EQ(value("PN_KIND_SKY_SHADOW"), std::to_string(passes::kKindSkyShadow));
+  // The tone mappers' codes come from the C++ enum, one define each.
+  EXPECT_EQ(value("PN_TONEMAP_PBR_NEUTRAL"), std::to_string(static_cast<int>(ToneMapper::PbrNeutral)));
+  EXPECT_EQ(value("PN_TONEMAP_ACES"), std::to_string(static_cast<int>(ToneMapper::AcesFitted)));
+  EXPECT_EQ(value("PN_TONEMAP_REINHARD"), std::to_string(static_cast<int>(ToneMapper::Reinhard)));
+  EXPECT_EQ(value("PN_TONEMAP_NONE"), std::to_string(static_cast<int>(ToneMapper::None)));
+  // Every name the settings take is in the list the defines come from.
+  for (const char* name : {"pbr-neutral", "neutral", "aces", "reinhard", "none"}) {
+    auto t = parseToneMapper(name);
+    ASSERT_TRUE(t.ok()) << name;
+    EXPECT_NE(std::find(std::begin(kToneMappers), std::end(kToneMappers), *t),
+              std::end(kToneMappers))
+        << name << ": add it to kToneMappers";
+  }
 }
 
 }  // namespace

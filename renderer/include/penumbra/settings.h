@@ -15,6 +15,9 @@
 namespace penumbra {
 
 enum class ToneMapper { PbrNeutral, AcesFitted, Reinhard, None };
+// Every value, in order: the shaders get each as PN_TONEMAP_<NAME> (passes/limits.h).
+inline constexpr ToneMapper kToneMappers[] = {ToneMapper::PbrNeutral, ToneMapper::AcesFitted,
+                                              ToneMapper::Reinhard, ToneMapper::None};
 const char* toneMapperName(ToneMapper t);
 // "pbr-neutral" (or "neutral"), "aces", "reinhard", "none".
 Result<ToneMapper> parseToneMapper(std::string_view name);

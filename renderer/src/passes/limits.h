@@ -11,6 +11,7 @@
 #include "gl/program.h"
 #include "gpu/texture_units.h"
 #include "penumbra/renderer.h"  // kMaxPunctualLights, public: RenderJob warns past it
+#include "penumbra/settings.h"
 #include "progressive/probe_relocation.h"
 #include "scene/light_kinds.h"
 
@@ -79,14 +80,27 @@ inline gl::Defines limitDefines() {
           {"PN_KIND_SKY_SHADOW", std::to_string(kKindSkyShadow)}};
 }
 
+// "pbr-neutral" -> "PBR_NEUTRAL": a name as part of a #define.
+inline std::string defineName(const char* name) {
+  std::string out;
+  for (const char* c = name; *c; ++c) {
+    out += *c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(*c)));
+  }
+  return out;
+}
+
 // Every shader also gets each light kind's code (scene/light_kinds.h) as PN_LIGHT_<NAME>, e.g.
-// PN_LIGHT_DISK (uAreaShape.z) and PN_LIGHT_SPOT (uPunctualPos.w).
+// PN_LIGHT_DISK (uAreaShape.z) and PN_LIGHT_SPOT (uPunctualPos.w), and each tone mapper's as
+// PN_TONEMAP_<NAME> (penumbra/settings.h), e.g. PN_TONEMAP_ACES: no shader keeps a copy of a
+// C++ enum's numbers.
 inline gl::Defines commonDefines() {
   gl::Defines d = limitDefines();
   for (const LightKind& k : lightKinds()) {
-    std::string name = "PN_LIGHT_";
-    for (const char* c = k.name; *c; ++c) name += static_cast<char>(std::toupper(*c));
-    d.emplace_back(std::move(name), std::to_string(k.shaderCode));
+    d.emplace_back("PN_LIGHT_" + defineName(k.name), std::to_string(k.shaderCode));
+  }
+  for (const ToneMapper t : kToneMappers) {
+    d.emplace_back("PN_TONEMAP_" + defineName(toneMapperName(t)),
+                   std::to_string(static_cast<int>(t)));
   }
   return d;
 }
