@@ -51,6 +51,7 @@ export declare class PenumbraViewerElement extends HTMLElement {
   loading: 'eager' | 'lazy' | string | null;
   /** A URL, or "neutral" for the built-in studio. */
   environmentImage: string | null;
+  skyboxImage: string | null;
   /** A linear factor, as model-viewer's (1: unchanged; the renderer's setting is EV = log2 of it). */
   exposure: number | null;
   /** auto-rotate: the view turns once left alone for auto-rotate-delay ms. */

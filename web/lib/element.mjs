@@ -35,8 +35,7 @@ export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
   'animation-name': 'animations play only natively for now (penumbra-render --animation NAME --time T)',
   'animation-crossfade-duration': 'animations play only natively for now',
   'shadow-intensity': 'there is no ground shadow yet', 'shadow-softness': 'there is no ground shadow yet',
-  'skybox-image': 'the background is environment-image\'s (or none with background="false")',
-  'skybox-height': 'the background is environment-image\'s',
+  'skybox-height': 'the skybox is infinitely far (no ground projection)',
   'interaction-prompt': 'there is no interaction prompt', 'interaction-prompt-style': 'there is no interaction prompt',
   'interaction-prompt-threshold': 'there is no interaction prompt',
   'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',
@@ -191,8 +190,8 @@ export class PenumbraViewerElement extends HTMLElement {
 
   #resetApplied() {
     // null: nothing set by the element (the scene's own or the API's default is in effect).
-    this.#applied = { settings: new Map(), environment: null, src: null, camera: null,
-                      variant: null, autoRotate: null };
+    this.#applied = { settings: new Map(), environment: null, skybox: null, src: null,
+                      camera: null, variant: null, autoRotate: null };
   }
 
   // Attribute changes arrive in batches (MutationObserver); one pass applies them all.
@@ -237,6 +236,7 @@ export class PenumbraViewerElement extends HTMLElement {
     const v = this.#viewer;
     await this.#applySettings(v);
     await this.#applyEnvironment(v);
+    await this.#applySkybox(v);
     const loaded = await this.#applySrc(v);
     if (this.loaded) {
       this.#applyVariant(v);
@@ -332,8 +332,27 @@ export class PenumbraViewerElement extends HTMLElement {
 
   // environment-image: a URL (packed .hdr or a panorama), "neutral" (the built-in studio, as
   // model-viewer's "neutral"), or none: the scene's own or the rule's.
+  // model-viewer's skybox-image: the background apart from environment-image's lighting;
+  // without environment-image it is the environment (#applyEnvironment), lighting too.
+  #skyboxText() {
+    const text = this.getAttribute('skybox-image');
+    return text === null || text.trim() === '' ? null : text;
+  }
+
+  async #applySkybox(v) {
+    const text = this.getAttribute('environment-image') === null ? null : this.#skyboxText();
+    const want = text === null ? null : this.#url(text);
+    if (want === this.#applied.skybox) return;
+    this.#applied.skybox = want;
+    try {
+      await v.setSkybox(want);
+    } catch (e) {
+      this.#fail('loadfailure', e);
+    }
+  }
+
   async #applyEnvironment(v) {
-    const text = this.getAttribute('environment-image');
+    const text = this.getAttribute('environment-image') ?? this.#skyboxText();
     const want = text === null ? null : text.trim() === 'neutral' ? 'neutral' : this.#url(text);
     if (want === this.#applied.environment) return;
     this.#applied.environment = want;
@@ -523,7 +542,8 @@ export class PenumbraViewerElement extends HTMLElement {
 }
 
 // Properties that reflect attributes, as model-viewer's do: el.src = 'x.glb', el.exposure = 1.
-const STRINGS = ['src', 'alt', 'poster', 'reveal', 'loading', 'environmentImage', 'toneMapping',
+const STRINGS = ['src', 'alt', 'poster', 'reveal', 'loading', 'environmentImage', 'skyboxImage',
+                 'toneMapping',
                  'cameraOrbit', 'cameraTarget', 'fieldOfView', 'variantName'];
 for (const prop of STRINGS) {
   const attr = settingAttribute(prop);

@@ -277,6 +277,8 @@ export declare class Viewer {
    * by the rule (black for a scene with area lights, else the studio).
    */
   setEnvironment(source: Source | Vec3 | 'studio' | null, options?: { name?: string }): Promise<void>;
+  /** model-viewer's skybox-image: the background from another environment file, lighting nothing; null: the environment's. */
+  setSkybox(source: Source | null, options?: { name?: string }): Promise<void>;
   /**
    * KHR_materials_variants: shows a variant of the loaded scene by name (or index); null or
    * 'default' for the primitives' own materials. Restarts the view. Returns the variant shown.

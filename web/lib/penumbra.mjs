@@ -224,6 +224,14 @@ export class Viewer {
     this.#restarted();
   }
 
+  // model-viewer's skybox-image: the background from another environment file (as
+  // setEnvironment takes), lighting nothing; null shows the environment again.
+  async setSkybox(source, { name } = {}) {
+    this.#check();
+    await this.#s.setSkybox(source ?? null, name, () => this.#check());
+    this.#restarted();
+  }
+
   // Auto-rotate: {enabled, speed (radians a second), delayMs} (autorotate.mjs; model-viewer's
   // defaults). The view turns once left alone for delayMs; an interaction restarts the delay.
   setAutoRotate(options) {
@@ -304,10 +312,8 @@ export class Viewer {
   // high-DPR phone (never below the CSS size) or while moving: canvasWidth/Height say which.
   async readPixels({ display = false } = {}) {
     this.#check();
-    const r = this.#s.call('pv_read', display ? 1 : 0);
-    const data = new Float32Array(this.#s.mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
-    return { width: r.width, height: r.height, frames: r.frames, data,
-             canvasWidth: this.#fullSize[0], canvasHeight: this.#fullSize[1] };
+    const [canvasWidth, canvasHeight] = this.#fullSize;
+    return { ...this.#s.read(display), canvasWidth, canvasHeight };
   }
 
   // Milliseconds per intermediate frame at the current size: one warm-up accumulation (shaders
@@ -418,9 +424,7 @@ export class Viewer {
 
   // Moving = the camera changed within stillMs. A finger or button held still does not count:
   // the full-resolution image should come back as soon as the view stops changing.
-  #isMoving(now) {
-    return now - this.#lastChange < this.#opts.stillMs;
-  }
+  #isMoving(now) { return now - this.#lastChange < this.#opts.stillMs; }
 
   // The drawing buffer's size at rest: CSS size x pixel ratio (autoResize), else the host's.
   #syncCanvasSize() {
@@ -451,9 +455,7 @@ export class Viewer {
     this.#needsPresent = false;
   }
 
-  #pixelRatio() {
-    return effectivePixelRatio(this.#opts, globalThis.devicePixelRatio);
-  }
+  #pixelRatio() { return effectivePixelRatio(this.#opts, globalThis.devicePixelRatio); }
 
   // One animation frame of the loop (loop.mjs). Returns false once converged with nothing new
   // to show: the loop then sleeps until a change wakes it (#restarted, setSettings, the

@@ -97,13 +97,7 @@ export class WasmSession {
       }
       return this.call('pv_set_uniform_environment', ...source);
     }
-    const bytes = typeof source === 'string' || source instanceof URL
-      ? await fetchBytes(new URL(String(source), location.href).href) : await toBytes(source);
-    check();
-    const shown = name || sourceName(source, 'environment.hdr');
-    const tooLarge = panoramaTooLarge(bytes, shown);
-    if (tooLarge) throw new PenumbraError(tooLarge);
-    const file = shown.replace(/[^\w.+-]/g, '_');
+    const { bytes, file } = await this.#environmentFile(source, name, 'environment.hdr', check);
     const size = radianceSize(bytes);
     if (size && !size.packed && size.width * size.height > STEPPED_PANORAMA_PIXELS) {
       this.withHeapCopy(bytes, (ptr) => this.call('pv_env_begin', ptr, bytes.length, file));
@@ -112,6 +106,32 @@ export class WasmSession {
     }
     return this.staged([{ path: file, bytes }],
                        (root) => this.call('pv_set_environment', root, file));
+  }
+
+  // The background apart from the lighting (Viewer.setSkybox: a URL, bytes or a File of a
+  // packed environment or a panorama; null: the environment again). Returns the state.
+  async setSkybox(source, name, check) {
+    if (source === null) return this.call('pv_set_skybox', '', '');
+    const { bytes, file } = await this.#environmentFile(source, name, 'skybox.hdr', check);
+    return this.staged([{ path: file, bytes }], (root) => this.call('pv_set_skybox', root, file));
+  }
+
+  // An environment file's bytes and a safe name for them, refused when too large to decode.
+  async #environmentFile(source, name, fallback, check) {
+    const bytes = typeof source === 'string' || source instanceof URL
+      ? await fetchBytes(new URL(String(source), location.href).href) : await toBytes(source);
+    check();
+    const shown = name || sourceName(source, fallback);
+    const tooLarge = panoramaTooLarge(bytes, shown);
+    if (tooLarge) throw new PenumbraError(tooLarge);
+    return { bytes, file: shown.replace(/[^\w.+-]/g, '_') };
+  }
+
+  // The last complete frame (pv_read): {width, height, frames, data} (RGBA floats, a copy).
+  read(display) {
+    const r = this.call('pv_read', display ? 1 : 0);
+    const data = new Float32Array(this.mod.HEAPU8.buffer, r.ptr, r.width * r.height * 4).slice();
+    return { width: r.width, height: r.height, frames: r.frames, data };
   }
 
   // Viewer.benchmark()'s figures over `frames` steps: one warm-up run (shaders compile on first

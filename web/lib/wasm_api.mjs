@@ -16,6 +16,7 @@ export function bindWasmApi(mod) {
     pv_env_begin: w('pv_env_begin', s, [n, n, s]), pv_env_step: w('pv_env_step', s, [n]),
     pv_env_finish: w('pv_env_finish', s, []),
     pv_set_builtin_environment: w('pv_set_builtin_environment', s, [s]),
+    pv_set_skybox: w('pv_set_skybox', s, [s, s]),
     pv_set_settings: w('pv_set_settings', s, [s]), pv_get_state: w('pv_get_state', s, []),
     pv_settings_schema: w('pv_settings_schema', s, []),
     pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),

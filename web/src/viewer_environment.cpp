@@ -99,6 +99,31 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_uniform_environment(float r, float g, fl
   });
 }
 
+// The background apart from the lighting (model-viewer's skybox-image): a packed environment
+// or a panorama as pv_set_environment takes, `file` staged in folder `dir`; an empty `file`
+// shows the environment again.
+EMSCRIPTEN_KEEPALIVE const char* pv_set_skybox(const char* dir, const char* file) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    const std::string path = file ? file : "";
+    if (path.empty()) {
+      if (auto st = (*v)->renderer->setSkybox(nullptr); !st) return errorJson(st.message());
+      (*v)->skybox.reset();
+      (*v)->skyboxName.clear();
+      return stateJson(**v);
+    }
+    InFolder here(dir);
+    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
+    auto env = loadEnvironment(path, panoramaOptions((*v)->settings.sunThreshold));
+    if (!env) return errorJson(env.message());
+    if (auto st = (*v)->renderer->setSkybox(&*env); !st) return errorJson(st.message());
+    (*v)->skybox = std::move(*env);
+    (*v)->skyboxName = fs::path(path).filename().string();
+    return stateJson(**v);
+  });
+}
+
 // A built-in environment: "studio" (the neutral studio, as a scene file's "studio") stays for
 // later bare models like a file set through the API; "default" forgets the API's environment
 // and applies the rule (black for a scene with area lights, else the studio), which later

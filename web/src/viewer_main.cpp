@@ -75,7 +75,8 @@ json cameraJson(const Camera& c) {
 json stateJson(const Viewer& v) {
   json j = {{"settings", json::parse(settingsToJson(v.settings))},
             {"camera", cameraJson(v.camera)},
-            {"environment", v.environmentName}};
+            {"environment", v.environmentName},
+            {"skybox", v.skybox ? json(v.skyboxName) : json(nullptr)}};
   if (v.scene) {
     j["bounds"] = {{"min", vec3Json(v.scene->bounds.min)}, {"max", vec3Json(v.scene->bounds.max)}};
     j["triangles"] = v.scene->triangleCount();
@@ -103,6 +104,7 @@ Status buildGpuState(Viewer& v) {
   v.renderer = std::move(*r);
   PN_TRY(v.renderer->setSettings(v.settings));
   PN_TRY(v.renderer->setEnvironment(v.environment));
+  if (v.skybox) PN_TRY(v.renderer->setSkybox(&*v.skybox));
   if (v.scene) {
     PN_TRY(v.renderer->setScene(*v.scene));
     PN_TRY(v.renderer->setVariant(v.variant));

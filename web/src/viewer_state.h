@@ -43,6 +43,9 @@ struct Viewer {
   PackedEnvironment environment = uniformEnvironment(glm::vec3(0.0f));
   std::string environmentName = "black";
   bool environmentFromUser = false;  // set through the API, not by a scene file
+  // The background apart from the lighting (pv_set_skybox; model-viewer's skybox-image).
+  std::optional<PackedEnvironment> skybox;
+  std::string skyboxName;
   std::string lastError;
   // A panorama being decoded in steps (pv_env_begin / pv_env_step / pv_env_finish).
   std::optional<PanoramaLoader> pendingPanorama;

@@ -510,3 +510,43 @@ test('progress is the download\'s, as model-viewer\'s: 0 first, never back, 1 be
   });
 });
 
+
+test('skybox-image changes the background and not the lighting; alone it lights too, as model-viewer\'s', { timeout: TEST_MS }, async () => {
+  await withTestPage('skybox', async (pg) => {
+    const common = `class="small" src="${GRID}" frames="4" adaptive-resolution="false"`;
+    await pg.evaluate((c) => {
+      window.add(`<penumbra-viewer id="env" ${c} environment-image="assets/env/studio_sky.hdr"></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="both" ${c} environment-image="assets/env/studio_sky.hdr"
+        skybox-image="assets/env/studio.hdr"></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="sky" ${c} skybox-image="assets/env/studio.hdr"></penumbra-viewer>`);
+    }, common);
+    for (const id of ['#env', '#both', '#sky']) await waitConverged(pg, id, 1);
+    const [env, both, sky] = [await shot(pg, '#env'), await shot(pg, '#both'), await shot(pg, '#sky')];
+    // Mean |difference| over rows [y0, y1) and columns [x0, x1), in [0, 1].
+    const region = (a, b, x0, x1, y0, y1) => {
+      let sum = 0, n = 0;
+      for (let y = y0; y < y1; y++) {
+        for (let x = x0; x < x1; x++) {
+          const i = (y * a.width + x) * 4;
+          for (let c = 0; c < 3; c++, n++) sum += Math.abs(a.data[i + c] - b.data[i + c]);
+        }
+      }
+      return sum / n / 255;
+    };
+    const { width: w, height: h } = env;
+    const skyBand = (a, b) => region(a, b, 0, w, 0, Math.round(h * 0.08));
+    const centre = (a, b) => region(a, b, w / 2 - 2, w / 2 + 2, h / 2 - 2, h / 2 + 2);
+    const figures = { backgroundChange: skyBand(env, both), litChange: centre(env, both),
+                      aloneLit: centre(env, sky), aloneBackground: skyBand(both, sky) };
+    console.log(`# skybox: ${JSON.stringify(figures)}`);
+    assert.ok(figures.backgroundChange > 0.03, `the skybox is the background: ${JSON.stringify(figures)}`);
+    assert.ok(figures.litChange < 0.01, `and lights nothing: ${JSON.stringify(figures)}`);
+    assert.ok(figures.aloneLit > 0.01, `alone it lights the model: ${JSON.stringify(figures)}`);
+    assert.ok(figures.aloneBackground < 0.01, `and is its background: ${JSON.stringify(figures)}`);
+    // Removed: the environment is the background again.
+    await pg.evaluate(() => document.querySelector('#both').removeAttribute('skybox-image'));
+    await waitConverged(pg, '#both', 2);
+    const restored = await shot(pg, '#both');
+    assert.ok(skyBand(env, restored) < 0.01, 'removing skybox-image shows the environment again');
+  });
+});

@@ -133,6 +133,10 @@ class Renderer {
   // the GPU, and so does the probe volume's layout (its light is gathered again).
   Status setVariant(int index);
   Status setEnvironment(const PackedEnvironment& environment);
+  // The background shown behind the scene apart from the environment that lights it
+  // (model-viewer's skybox-image), with the environment's intensity and rotation; null: the
+  // environment itself again. It lights nothing. Restarts accumulation.
+  Status setSkybox(const PackedEnvironment* skybox);
   void setCamera(const Camera& camera);
   Status setSettings(const RenderSettings& settings);
 

@@ -292,8 +292,9 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only
 // uncovered pixels pay for it. `alpha` is 1, or a probe capture's distance for the sky.
-Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
-                                    const CameraMatrices& camera, float blur, float alpha) {
+Status LightingPass::drawBackground(const LightingBatch& b, const GpuEnvironment& shown,
+                                    const glm::mat3& envRotation, const CameraMatrices& camera,
+                                    float blur, float alpha) {
   const int accumulate = b.accumulateFrame > 0 ? 1 : 0, blurred = blur > 0.0f ? 1 : 0;
   auto& slot = backgrounds_[static_cast<size_t>(accumulate * 2 + blurred)];
   if (!slot) {
@@ -305,7 +306,7 @@ Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& env
   }
   const FullscreenPass& pass = *slot;
   const gl::Program& bg = pass.begin(/*depthTest=*/true);
-  b.environment->bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
+  shown.bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
   bg.set("uInvViewProj", glm::inverse(camera.projection * camera.view));
   bg.set("uBackgroundBlur", blur);
   bg.set("uBackgroundAlpha", alpha);
@@ -321,7 +322,8 @@ Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& env
 Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
   // Accumulating, the pixels the scene leaves are drawn whether or not a background is shown.
   if (b.settings->showBackground || b.accumulateFrame > 0) {
-    return drawBackground(b, envRotation, *b.camera, b.settings->backgroundBlur, 1.0f);
+    return drawBackground(b, b.background ? *b.background : *b.environment, envRotation,
+                          *b.camera, b.settings->backgroundBlur, 1.0f);
   }
   return {};
 }
@@ -368,7 +370,7 @@ Status LightingPass::drawCapture(const LightingBatch& b, const std::vector<Captu
   if (b.first) {
     for (const CaptureView& view : views) {
       gl::setViewport(view.x, view.y, view.size, view.size);
-      PN_TRY(drawBackground(b, envRotation, view.camera, 0.0f, skyDistance));
+      PN_TRY(drawBackground(b, *b.environment, envRotation, view.camera, 0.0f, skyDistance));
     }
   }
   return {};

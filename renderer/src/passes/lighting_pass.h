@@ -65,6 +65,9 @@ struct LightingBatch {
   int drawWidth = 0, drawHeight = 0;
   const GpuScene* scene = nullptr;  // may be null: background only
   const GpuEnvironment* environment = nullptr;
+  // The view's background (Renderer::setSkybox: model-viewer's skybox-image); null: the
+  // environment. It lights nothing: probe captures see the environment.
+  const GpuEnvironment* background = nullptr;
   const ShadowPass* shadows = nullptr;
   const PointShadowPass* pointShadows = nullptr;
   const RenderSettings* settings = nullptr;
@@ -160,8 +163,9 @@ class LightingPass {
                            const std::function<void(const gl::Program&)>& setup);
   Status drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation);
   Status drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
-  Status drawBackground(const LightingBatch& b, const glm::mat3& envRotation,
-                        const CameraMatrices& camera, float blur, float alpha);
+  Status drawBackground(const LightingBatch& b, const GpuEnvironment& shown,
+                        const glm::mat3& envRotation, const CameraMatrices& camera, float blur,
+                        float alpha);
 
   gl::ShaderLibrary* library_ = nullptr;
   std::map<std::array<uint64_t, 2>, gl::Program*> programs_;  // by ProgramKey::key()

@@ -79,6 +79,7 @@ void Renderer::Impl::buildBatches(const progressive::FrameSchedule& fs, float oc
                               .drawHeight = pending.drawHeight,
                               .scene = scene.get(),
                               .environment = environment.get(),
+                              .background = skybox.get(),
                               .shadows = &*shadows,
                               .pointShadows = &*pointShadows,
                               .settings = &settings,

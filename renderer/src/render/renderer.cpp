@@ -70,6 +70,20 @@ Status Renderer::setEnvironment(const PackedEnvironment& environment) {
   return {};
 }
 
+Status Renderer::setSkybox(const PackedEnvironment* skybox) {
+  gl::StateGuard guard(impl_->options.preserveHostState);
+  if (!skybox) {
+    impl_->skybox = nullptr;
+  } else {
+    auto env = GpuEnvironment::create(*skybox);
+    if (!env) return env.error();
+    PN_TRY(gl::checkError("uploading the skybox"));
+    impl_->skybox = std::move(*env);
+  }
+  impl_->controller.invalidate();
+  return {};
+}
+
 void Renderer::setCamera(const Camera& camera) {
   impl_->camera = camera;
   impl_->hasCamera = true;

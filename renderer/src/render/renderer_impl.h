@@ -84,6 +84,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   ibl::SkyDistribution sky;     // the environment without its sun, for sky shadows
   Light skySample;              // this frame's sky-shadow sample (punctual draws point to it)
   std::unique_ptr<GpuEnvironment> environment;
+  std::unique_ptr<GpuEnvironment> skybox;  // the view's background (setSkybox); null: environment
   Camera camera;
   bool hasCamera = false;
   // The per-view caches' counters (the prepass, the probe volume's and the area lights' caches),
