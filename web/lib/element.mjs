@@ -14,6 +14,7 @@
 import { Penumbra, PenumbraError } from './penumbra.mjs';
 import { ProgressMeter } from './progress.mjs';
 import { AUTO_ROTATE_DEFAULTS } from './autorotate.mjs';
+import { InteractionPrompt, PROMPT_STYLE, PROMPT_TEMPLATE } from './prompt.mjs';
 
 export { Penumbra, PenumbraError, Viewer, version } from './penumbra.mjs';
 
@@ -36,8 +37,6 @@ export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
   'animation-crossfade-duration': 'animations play only natively for now',
   'shadow-intensity': 'there is no ground shadow yet', 'shadow-softness': 'there is no ground shadow yet',
   'skybox-height': 'the skybox is infinitely far (no ground projection)',
-  'interaction-prompt': 'there is no interaction prompt', 'interaction-prompt-style': 'there is no interaction prompt',
-  'interaction-prompt-threshold': 'there is no interaction prompt',
   'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',
   'min-field-of-view': 'the field of view has no limits', 'max-field-of-view': 'the field of view has no limits',
   'disable-zoom': 'camera-controls cannot be restricted', 'disable-pan': 'camera-controls cannot be restricted',
@@ -108,12 +107,13 @@ const TEMPLATE = `<style>
   [hidden] { display: none; }
   .bar { position: absolute; top: 0; left: 0; right: 0; height: 4px; pointer-events: none; }
   .bar > div { height: 100%; width: 0; background: rgba(0, 0, 0, 0.4); transition: width 0.1s; }
+  ${PROMPT_STYLE}
 </style><canvas part="canvas"></canvas><img part="poster" class="poster" alt="" hidden>
 <slot name="progress-bar"><div part="default-progress-bar" class="bar" hidden><div
-  part="default-progress-mask"></div></div></slot>`;
+  part="default-progress-mask"></div></div></slot>${PROMPT_TEMPLATE}`;
 
 export class PenumbraViewerElement extends HTMLElement {
-  #canvas; #poster; #bar;  // #bar: the default download bar (slot "progress-bar" replaces it)
+  #canvas; #poster; #bar; #prompt;  // #prompt: prompt.mjs  // #bar: the default download bar (slot "progress-bar" replaces it)
   #viewer = null; #startFailed = false;
   #visible = false;            // on screen (IntersectionObserver)
   #interacted = false;         // reveal="interaction": the user clicked or pressed a key
@@ -134,8 +134,10 @@ export class PenumbraViewerElement extends HTMLElement {
     this.#canvas = this.shadowRoot.querySelector('canvas');
     this.#poster = this.shadowRoot.querySelector('.poster');
     this.#bar = this.shadowRoot.querySelector('.bar');
+    this.#prompt = new InteractionPrompt(this, this.shadowRoot);
     this.#resetApplied();
     const reveal = (e) => {
+      this.#prompt.touched();
       if (e.type === 'keydown' && e.key !== 'Enter' && e.key !== ' ') return;
       if (this.#interacted) return;
       this.#interacted = true;
@@ -383,6 +385,8 @@ export class PenumbraViewerElement extends HTMLElement {
       return null;
     }
     this.#loadedSrc = want;
+    this.#prompt.reset();  // a new model may prompt again
+    this.#prompt.update(this.#modelVisible);
     this.#sceneCamera = v.camera;
     this.#bounds = info.bounds;
     this.#applied.camera = null;  // camera-* and variant-name apply to the new scene
@@ -462,6 +466,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #setModelVisible(visible) {
     if (visible === this.#modelVisible) return;
     this.#modelVisible = visible;
+    this.#prompt.update(visible);
     this.#dispatch('model-visibility', { visible });
   }
 
@@ -525,6 +530,7 @@ export class PenumbraViewerElement extends HTMLElement {
   }
 
   #dispose() {
+    this.#prompt.reset();
     if (!this.#viewer) return;
     this.#viewer.dispose();
     this.#viewer = null;

@@ -550,3 +550,26 @@ test('skybox-image changes the background and not the lighting; alone it lights 
     assert.ok(skyBand(env, restored) < 0.01, 'removing skybox-image shows the environment again');
   });
 });
+
+test('interaction-prompt: a hand after the threshold with camera-controls, gone at the first touch; none and no controls: never', { timeout: TEST_MS }, async () => {
+  await withTestPage('prompt', async (pg) => {
+    const common = `class="small" src="${CORNELL}" frames="4" adaptive-resolution="false" interaction-prompt-threshold="300"`;
+    await pg.evaluate((c) => {
+      window.add(`<penumbra-viewer id="p" ${c} camera-controls></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="none" ${c} camera-controls interaction-prompt="none"></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="still" ${c}></penumbra-viewer>`);
+    }, common);
+    for (const id of ['#p', '#none', '#still']) await waitConverged(pg, id, 1);
+    await pg.waitForTimeout(600);
+    const shown = () => pg.evaluate(() => Object.fromEntries(['p', 'none', 'still'].map((id) => [
+      id, !document.querySelector(`#${id}`).shadowRoot.querySelector('.prompt').hidden])));
+    assert.deepEqual(await shown(), { p: true, none: false, still: false });
+    const style = await pg.evaluate(() =>
+      document.querySelector('#p').shadowRoot.querySelector('.prompt').classList.contains('wiggle'));
+    assert.equal(style, true, 'wiggle is the default style');
+    await pg.evaluate(() => document.querySelector('#p').dispatchEvent(
+      new PointerEvent('pointerdown', { bubbles: true })));
+    await pg.waitForTimeout(600);
+    assert.deepEqual(await shown(), { p: false, none: false, still: false }, 'the first touch takes it away');
+  });
+});
