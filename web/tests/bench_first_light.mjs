@@ -2,7 +2,7 @@
 // SwiftShader (a CPU "GPU"), issue #36's browser figures.
 //
 //   node web/tests/bench_first_light.mjs [--runs 2] [--timeout 180] [--start both]
-//       [--only both] [--query K=V&...]
+//       [--only both|default|square|phone] [--query K=V&...]
 // (Serves web/dist, made by tools/build-web; PENUMBRA_WEB_DIST points at another build.)
 //
 // --start: "fresh", the page opened the moment the browser has launched; "running", in a
@@ -19,11 +19,15 @@
 //    include that small cost.
 // 2. A 2-triangle textured square under an HDR (studio_sky.hdr), frames "auto", at 512x512:
 //    from navigation to the viewer's 'converged', and the frames it took.
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+// 3. Issue #59's phone figures (--only phone): the square and, where the sample models are
+//    beside the repository (../shared/gltf-sample-assets, else skipped), DamagedHelmet under the
+//    same HDR, on the phone viewport: from navigation to 'converged' (the page's "Done") and to
+//    'sharpened' (the still image at device pixels), and the frames each took.
+import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
-import { closeServer, dist, serve, withPage } from './harness.mjs';
+import { closeServer, dist, root, serve, withPage } from './harness.mjs';
 
 const args = process.argv.slice(2);
 const arg = (name, def) => {
@@ -43,7 +47,7 @@ const extraQuery = arg('query', '');
 // navigation).
 const PROBE = () => {
   const log = (window.__first = { samples: [], presents: [], converged: null, frames: 0,
-                                  created: null });
+                                  created: null, sharpened: null, sharpFrames: 0 });
   const small = document.createElement('canvas');
   small.width = small.height = 32;
   const ctx = small.getContext('2d', { willReadFrequently: true });
@@ -58,6 +62,10 @@ const PROBE = () => {
       viewer.on('converged', ({ frame }) => {
         log.converged = performance.now();
         log.frames = frame;
+      });
+      viewer.on('sharpened', ({ frame }) => {
+        log.sharpened = performance.now();
+        log.sharpFrames = frame;
       });
     }
     if (canvas && canvas.width > 0) {
@@ -84,7 +92,7 @@ link</a> and <b>bold</b> words. Lorem ipsum dolor sit amet, consectetur adipisci
 <select><option>one</option></select> <input type="checkbox"> <input type="range"></div>
 <div class="card" style="opacity:.8"><p>More text. Ut enim ad minim veniam.</p></div></body></html>`;
 
-async function measure(server, query, device, start, ordinaryUrl) {
+async function measure(server, query, device, start, ordinaryUrl, sharpened = false) {
   return withPage({ ...device, launchMs: 30_000 }, async (page) => {
     await page.addInitScript(PROBE);
     if (start === 'running') {
@@ -93,10 +101,14 @@ async function measure(server, query, device, start, ordinaryUrl) {
     }
     await page.goto(`http://127.0.0.1:${server.address().port}/index.html${query}`,
                     { timeout: 30_000 });
-    await page.waitForFunction(() => window.__first?.converged !== null ||
-                                     window.penumbraPage?.fatal ||
-                                     window.penumbraPage?.errors.length > 0,
-                               null, { timeout: timeoutMs, polling: 250 });
+    // With `sharpened`: until the device-pixel stage is done too (or 10 s after converging,
+    // where the page had nothing to sharpen).
+    await page.waitForFunction((sharp) => {
+      const f = window.__first;
+      const done = f?.converged !== null && (!sharp || f.sharpened !== null ||
+                                             performance.now() > f.converged + 10_000);
+      return done || window.penumbraPage?.fatal || window.penumbraPage?.errors.length > 0;
+    }, sharpened, { timeout: timeoutMs, polling: 250 });
     const r = await page.evaluate(() => ({ log: window.__first,
                                            errors: window.penumbraPage.errors }));
     if (r.errors.length) throw new Error(r.errors.join('; '));
@@ -145,7 +157,11 @@ const s = (ms) => (ms === null || ms === undefined ? 'never' : `${(ms / 1000).to
 const firstAt = (samples, level) => samples.find((x) => x.mean >= level)?.t ?? null;
 
 const tmp = mkdtempSync(join(tmpdir(), 'penumbra-bench-'));
-const server = await serve(dist, texturedSquare(tmp));
+const server = await serve(dist, {
+  ...texturedSquare(tmp),
+  '/bench/DamagedHelmet.glb': join(root, '..', 'shared', 'gltf-sample-assets', 'DamagedHelmet',
+                                   'DamagedHelmet.glb'),
+});
 writeFileSync(join(tmp, 'ordinary.html'), ORDINARY);
 const other = await serve(tmp, {});
 const ordinaryUrl = `http://localhost:${other.address().port}/ordinary.html`;
@@ -153,7 +169,7 @@ try {
   readFileSync(join(dist, 'index.html'));
   const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true,
                   hasTouch: true };
-  for (const start of only === 'square' ? [] : starts) {
+  for (const start of only === 'square' || only === 'phone' ? [] : starts) {
     console.log('Default page (Cornell box, own lamp only), phone 390x844 DPR 3, SwiftShader, ' +
                 `${start} browser:`);
     for (let i = 0; i < runs; i++) {
@@ -168,7 +184,7 @@ try {
     }
   }
   const square = { viewport: { width: 512, height: 512 }, deviceScaleFactor: 1 };
-  for (const start of only === 'default' ? [] : starts) {
+  for (const start of only === 'default' || only === 'phone' ? [] : starts) {
     console.log('Textured 2-triangle square under studio_sky.hdr, frames auto, 512x512, ' +
                 `${start} browser:`);
     for (let i = 0; i < runs; i++) {
@@ -178,6 +194,23 @@ try {
       console.log(`  run ${i + 1}: viewer created ${s(log.created)}, ` +
                   `first frame ${s(log.presents[0]?.t)}, converged ${s(log.converged)} ` +
                   `(${log.frames} frames)`);
+    }
+  }
+  const helmet = join(root, '..', 'shared', 'gltf-sample-assets', 'DamagedHelmet', 'DamagedHelmet.glb');
+  const models = [['Textured 2-triangle square', 'bench/square.gltf']];
+  if (existsSync(helmet)) models.push(['DamagedHelmet', 'bench/DamagedHelmet.glb']);
+  else if (only === 'phone') console.log(`(${helmet} is absent: DamagedHelmet skipped)`);
+  for (const start of only === 'phone' ? starts : []) {
+    for (const [name, path] of models) {
+      console.log(`${name} under studio_sky.hdr, frames auto, phone 390x844 DPR 3, ${start} browser:`);
+      for (let i = 0; i < runs; i++) {
+        const log = await measure(server, `?scene=${path}&env=assets/env/studio_sky.hdr&frames=auto` +
+                                          `${extraQuery ? `&${extraQuery}` : ''}`,
+                                  phone, start, ordinaryUrl, true);
+        console.log(`  run ${i + 1}: first frame ${s(log.presents[0]?.t)}, Done ${s(log.converged)} ` +
+                    `(${log.frames} frames), at device pixels ${s(log.sharpened)} ` +
+                    `(${log.sharpFrames} frames)`);
+      }
     }
   }
 } finally {
