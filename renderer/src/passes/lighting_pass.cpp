@@ -171,6 +171,16 @@ Status LightingPass::drawByMaterial(const LightingVariant& v, const GpuScene& sc
 
 void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
                                const glm::mat3& envRotation) {
+  setViewUniforms(p, b, envRotation);
+  setShadowSlots(p, b);
+  setAreaUniforms(p, b);  // after the point shadows' binds (setViewUniforms): see there
+  setPunctualUniforms(p, b);
+  if (b.accumulateFrame > 0) setAccumulation(p, b);
+}
+
+// The camera, the environment, the occlusion rays and the caches, the shadow maps' textures.
+void LightingPass::setViewUniforms(const gl::Program& p, const LightingBatch& b,
+                                   const glm::mat3& envRotation) {
   const RenderSettings& s = *b.settings;
   const CameraMatrices& cm = *b.camera;
   p.use();
@@ -209,10 +219,10 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     b.targets->probeCache.bind(kUnitProbeCache);
     p.set("uProbeCache", kUnitProbeCache);
   }
+}
 
-  // This batch's area-light samples.
-  std::vector<glm::vec3> pos, dir, right, up, radiance;
-  std::vector<glm::vec4> shape;
+// The batch's shadow-map slots: each area sample's, and the punctual samples' that have one.
+void LightingPass::setShadowSlots(const gl::Program& p, const LightingBatch& b) {
   std::vector<glm::mat4> shadowMatrices(kMaxShadowMaps, glm::mat4(1.0f));
   std::vector<glm::vec4> shadowParams(kMaxShadowMaps, glm::vec4(0.0f));
   for (const PunctualDraw& pd : b.punctual) {
@@ -220,6 +230,19 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     shadowMatrices[static_cast<size_t>(pd.shadowSlot)] = pd.view.matrix;
     shadowParams[static_cast<size_t>(pd.shadowSlot)] = pd.view.params;
   }
+  for (size_t i = 0; i < b.area.size() && i < static_cast<size_t>(kMaxShadowMaps); ++i) {
+    if (!b.area[i].shadowed) continue;
+    shadowMatrices[i] = b.area[i].view.matrix;
+    shadowParams[i] = b.area[i].view.params;
+  }
+  p.set("uShadowMatrix", std::span<const glm::mat4>(shadowMatrices));
+  p.set("uShadowParams", std::span<const glm::vec4>(shadowParams));
+}
+
+void LightingPass::setAreaUniforms(const gl::Program& p, const LightingBatch& b) {
+  // This batch's area-light samples.
+  std::vector<glm::vec3> pos, dir, right, up, radiance;
+  std::vector<glm::vec4> shape;
   for (size_t i = 0; i < b.area.size(); ++i) {
     const AreaSampleDraw& a = b.area[i];
     const Light& l = *a.light;
@@ -230,10 +253,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     shape.emplace_back(l.width, l.height, static_cast<float>(lightKind(l.type).shaderCode),
                        a.shadowed ? static_cast<float>(i) : -1.0f);
     radiance.push_back(l.color * l.intensity * a.weight);
-    if (a.shadowed) {
-      shadowMatrices[i] = a.view.matrix;
-      shadowParams[i] = a.view.params;
-    }
   }
   p.set("uAreaPos", std::span<const glm::vec3>(pos));
   p.set("uAreaDir", std::span<const glm::vec3>(dir));
@@ -249,9 +268,9 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
     p.set("uLightCache", kUnitLightCache);
     p.set("uAreaLayer", std::span<const int>(layers));
   }
-  p.set("uShadowMatrix", std::span<const glm::mat4>(shadowMatrices));
-  p.set("uShadowParams", std::span<const glm::vec4>(shadowParams));
+}
 
+void LightingPass::setPunctualUniforms(const gl::Program& p, const LightingBatch& b) {
   // Punctual lights (first batch only; past kMaxPunctualLights they are not shaded).
   std::vector<glm::vec4> ppos, pdir;
   std::vector<glm::vec3> pcol;
@@ -287,7 +306,6 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
   p.set("uPunctualDisk", std::span<const glm::vec4>(disk));
   p.set("uPointShadowPos", std::span<const glm::vec4>(pointPos));
   p.set("uPointShadowParams", std::span<const glm::vec4>(pointParams));
-  if (b.accumulateFrame > 0) setAccumulation(p, b);
 }
 
 // The environment behind the scene: drawn after the opaque geometry at the far plane, so only

@@ -154,6 +154,11 @@ class LightingPass {
                         const std::vector<DrawItem>& items, gl::PipelineState state,
                         const std::function<void(const gl::Program&)>& setup, int instances = 0);
   void setUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
+  // setUniforms' parts: the view's, the shadow-map slots, each light kind's samples.
+  void setViewUniforms(const gl::Program& p, const LightingBatch& b, const glm::mat3& envRotation);
+  static void setShadowSlots(const gl::Program& p, const LightingBatch& b);
+  void setAreaUniforms(const gl::Program& p, const LightingBatch& b);
+  static void setPunctualUniforms(const gl::Program& p, const LightingBatch& b);
   // The parts of draw(): the depth-only pass, the per-view caches' writes, the sorted BLEND
   // surfaces and the transmissive surfaces' own light.
   void drawDepth(const LightingBatch& b);
