@@ -256,19 +256,24 @@ class Checker:
                n.get("camera", 0) >= len(doc.get("cameras", [1])):
                 self.err("node %d: mesh/camera out of range" % i)
 
-    def summary(self):
-        doc, tris, lo, hi = self.doc, 0, [math.inf] * 3, [-math.inf] * 3
+    def bounds(self):
+        """World bounds (lo, hi) of the meshes' POSITION min/max boxes (after world_matrices)."""
+        doc, lo, hi = self.doc, [math.inf] * 3, [-math.inf] * 3
         for i, m in self.world.items():
             n = doc["nodes"][i]
-            if "mesh" in n:
-                tris += self.mesh_tris.get(n["mesh"], 0)
-                for prim in doc["meshes"][n["mesh"]]["primitives"]:
-                    a = doc["accessors"][prim["attributes"]["POSITION"]]
-                    for c in range(8):
-                        p = [(a["max"] if c >> k & 1 else a["min"])[k] for k in range(3)]
-                        w = self.xform(m, p)
-                        lo = [min(lo[k], w[k]) for k in range(3)]
-                        hi = [max(hi[k], w[k]) for k in range(3)]
+            for prim in doc["meshes"][n["mesh"]]["primitives"] if "mesh" in n else []:
+                a = doc["accessors"][prim["attributes"]["POSITION"]]
+                for c in range(8):
+                    w = self.xform(m, [(a["max"] if c >> k & 1 else a["min"])[k] for k in range(3)])
+                    lo = [min(lo[k], w[k]) for k in range(3)]
+                    hi = [max(hi[k], w[k]) for k in range(3)]
+        return lo, hi
+
+    def summary(self):
+        doc = self.doc
+        tris = sum(self.mesh_tris.get(doc["nodes"][i]["mesh"], 0) for i in self.world
+                   if "mesh" in doc["nodes"][i])
+        lo, hi = self.bounds()
         size = sum(len(b) for b in self.buffers)
         print("%s: %d triangles (instanced), %d meshes, %d materials, buffer %d bytes" %
               (self.path, tris, len(doc.get("meshes", [])), len(doc.get("materials", [])), size))

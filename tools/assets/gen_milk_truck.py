@@ -24,49 +24,10 @@ import struct
 import subprocess
 import sys
 
+from check_gltf import Checker
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SOURCE = '/usr/share/assimp/models/glTF/CesiumMilkTruck'
-
-
-def _mat_mul(a, b):  # column-major 4x4
-    return [sum(a[k * 4 + r] * b[c * 4 + k] for k in range(4)) for c in range(4) for r in range(4)]
-
-
-def _node_matrix(node):
-    if 'matrix' in node:
-        return list(node['matrix'])
-    x, y, z, w = node.get('rotation', [0, 0, 0, 1])
-    sx, sy, sz = node.get('scale', [1, 1, 1])
-    t = node.get('translation', [0, 0, 0])
-    r = [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
-         2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-         2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)]
-    return [r[0] * sx, r[1] * sx, r[2] * sx, 0, r[3] * sy, r[4] * sy, r[5] * sy, 0,
-            r[6] * sz, r[7] * sz, r[8] * sz, 0, t[0], t[1], t[2], 1]
-
-
-def _world_bounds(doc):
-    lo, hi = [math.inf] * 3, [-math.inf] * 3
-
-    def visit(i, parent):
-        node = doc['nodes'][i]
-        m = _mat_mul(parent, _node_matrix(node))
-        if 'mesh' in node:
-            for prim in doc['meshes'][node['mesh']]['primitives']:
-                acc = doc['accessors'][prim['attributes']['POSITION']]
-                a, b = acc['min'], acc['max']
-                for c in range(8):
-                    p = [(b if c >> k & 1 else a)[k] for k in range(3)]
-                    w = [m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]
-                         for r in range(3)]
-                    for k in range(3):
-                        lo[k], hi[k] = min(lo[k], w[k]), max(hi[k], w[k])
-        for child in node.get('children', []):
-            visit(child, m)
-
-    for root in doc['scenes'][doc.get('scene', 0)]['nodes']:
-        visit(root, [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
-    return lo, hi
 
 
 def _quaternion(right, up, back):  # of the rotation whose columns are the three axes
@@ -92,7 +53,10 @@ def add_camera(glb_path, aspect):
     json_len = struct.unpack_from('<I', data, 12)[0]
     doc = json.loads(data[20:20 + json_len])
     rest = data[20 + json_len:]
-    lo, hi = _world_bounds(doc)
+    checker = Checker(glb_path)
+    checker.doc = doc
+    checker.world_matrices()
+    lo, hi = checker.bounds()
     centre = [(a + b) / 2 for a, b in zip(lo, hi)]
     radius = math.dist(lo, hi) / 2
     yfov = 0.6

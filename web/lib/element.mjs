@@ -113,7 +113,9 @@ const TEMPLATE = `<style>
   part="default-progress-mask"></div></div></slot>${PROMPT_TEMPLATE}`;
 
 export class PenumbraViewerElement extends HTMLElement {
-  #canvas; #poster; #bar; #prompt;  // #prompt: prompt.mjs  // #bar: the default download bar (slot "progress-bar" replaces it)
+  #canvas; #poster;
+  #bar;     // the default download bar (slot "progress-bar" replaces it)
+  #prompt;  // the interaction prompt (prompt.mjs)
   #viewer = null; #startFailed = false;
   #visible = false;            // on screen (IntersectionObserver)
   #interacted = false;         // reveal="interaction": the user clicked or pressed a key
@@ -332,8 +334,6 @@ export class PenumbraViewerElement extends HTMLElement {
     }
   }
 
-  // environment-image: a URL (packed .hdr or a panorama), "neutral" (the built-in studio, as
-  // model-viewer's "neutral"), or none: the scene's own or the rule's.
   // model-viewer's skybox-image: the background apart from environment-image's lighting;
   // without environment-image it is the environment (#applyEnvironment), lighting too.
   #skyboxText() {
@@ -353,6 +353,8 @@ export class PenumbraViewerElement extends HTMLElement {
     }
   }
 
+  // environment-image: a URL (packed .hdr or a panorama), "neutral" (the built-in studio, as
+  // model-viewer's "neutral"), or none: the scene's own or the rule's.
   async #applyEnvironment(v) {
     const text = this.getAttribute('environment-image') ?? this.#skyboxText();
     const want = text === null ? null : text.trim() === 'neutral' ? 'neutral' : this.#url(text);

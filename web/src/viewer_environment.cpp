@@ -14,6 +14,16 @@
 using namespace penumbra;
 using namespace penumbra::web;
 
+namespace {
+// An environment file staged in folder `dir` (a packed one, or a panorama prefiltered here with
+// the sun threshold in force), for pv_set_environment and pv_set_skybox.
+Result<PackedEnvironment> loadStaged(const Viewer& v, const char* dir, const std::string& file) {
+  InFolder here(dir);
+  if (!here.ok) return makeError(std::string("cannot enter staging folder ") + dir);
+  return loadEnvironment(file, panoramaOptions(v.settings.sunThreshold));
+}
+}  // namespace
+
 extern "C" {
 
 // A packed environment (penumbra-prefilter) or a panorama (.hdr/.png, prefiltered here),
@@ -22,10 +32,8 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_environment(const char* dir, const char*
   return guarded([&]() -> json {
     auto v = viewer();
     if (!v) return errorJson(v.message());
-    InFolder here(dir);
-    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
     const std::string path = file;
-    auto env = loadEnvironment(path, panoramaOptions((*v)->settings.sunThreshold));
+    auto env = loadStaged(**v, dir, path);
     if (!env) return errorJson(env.message());
     if (auto st = (*v)->renderer->setEnvironment(*env); !st) return errorJson(st.message());
     (*v)->environment = std::move(*env);
@@ -113,9 +121,7 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_skybox(const char* dir, const char* file
       (*v)->skyboxName.clear();
       return stateJson(**v);
     }
-    InFolder here(dir);
-    if (!here.ok) return errorJson(std::string("cannot enter staging folder ") + dir);
-    auto env = loadEnvironment(path, panoramaOptions((*v)->settings.sunThreshold));
+    auto env = loadStaged(**v, dir, path);
     if (!env) return errorJson(env.message());
     if (auto st = (*v)->renderer->setSkybox(&*env); !st) return errorJson(st.message());
     (*v)->skybox = std::move(*env);

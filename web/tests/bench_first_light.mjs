@@ -157,11 +157,8 @@ const s = (ms) => (ms === null || ms === undefined ? 'never' : `${(ms / 1000).to
 const firstAt = (samples, level) => samples.find((x) => x.mean >= level)?.t ?? null;
 
 const tmp = mkdtempSync(join(tmpdir(), 'penumbra-bench-'));
-const server = await serve(dist, {
-  ...texturedSquare(tmp),
-  '/bench/DamagedHelmet.glb': join(root, '..', 'shared', 'gltf-sample-assets', 'DamagedHelmet',
-                                   'DamagedHelmet.glb'),
-});
+const helmet = join(root, '..', 'shared', 'gltf-sample-assets', 'DamagedHelmet', 'DamagedHelmet.glb');
+const server = await serve(dist, { ...texturedSquare(tmp), '/bench/DamagedHelmet.glb': helmet });
 writeFileSync(join(tmp, 'ordinary.html'), ORDINARY);
 const other = await serve(tmp, {});
 const ordinaryUrl = `http://localhost:${other.address().port}/ordinary.html`;
@@ -196,7 +193,6 @@ try {
                   `(${log.frames} frames)`);
     }
   }
-  const helmet = join(root, '..', 'shared', 'gltf-sample-assets', 'DamagedHelmet', 'DamagedHelmet.glb');
   const models = [['Textured 2-triangle square', 'bench/square.gltf']];
   if (existsSync(helmet)) models.push(['DamagedHelmet', 'bench/DamagedHelmet.glb']);
   else if (only === 'phone') console.log(`(${helmet} is absent: DamagedHelmet skipped)`);
