@@ -1,12 +1,14 @@
 // The punctual-light term of lighting.frag (PN_PUNCTUAL): KHR_lights_punctual samples (spot
 // and directional ones shadowed, point lights by their cube maps) and the sky-shadow samples.
 // The batch's PN_PUNCTUAL_COUNT samples; the loop over them unrolls (constant indices).
-uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: PN_LIGHT_POINT, _SPOT or _DIRECTIONAL
+// A sample's kind (uPunctualPos.w, PN_SAMPLE_*: scene/light_kinds.h PunctualSample) says what
+// its other uniforms hold; no value of theirs stands for a kind.
+uniform vec4 uPunctualPos[MAX_PUNCTUAL];    // xyz, w: PN_SAMPLE_POINT, _SPOT, ... _SKY_SHADOW
 uniform vec4 uPunctualDir[MAX_PUNCTUAL];    // xyz direction of travel, w: range (0 = none)
 uniform vec3 uPunctualColor[MAX_PUNCTUAL];  // colour * intensity * weight
 uniform vec2 uPunctualCone[MAX_PUNCTUAL];   // spot: scale, offset (KHR_lights_punctual)
-uniform int uPunctualShadow[MAX_PUNCTUAL];  // shadow map of this sample (-1: unshadowed)
-uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // directional: xyz centre direction of travel,
+uniform int uPunctualShadow[MAX_PUNCTUAL];  // point: its cube map, others: their 2D map; -1 none
+uniform vec4 uPunctualDisk[MAX_PUNCTUAL];   // sun: xyz centre direction of travel,
                                             // w tan(angular radius); 0 for the others
 
 // The specular lobe of a punctual sample: only the forms this batch's kinds need.
@@ -30,17 +32,18 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
   for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
     vec3 l;
     float attenuation = 1.0;
-    int type = int(uPunctualPos[i].w);
-    // PN_PUNCTUAL_KINDS (passes/limits.h PunctualKindBits) compiles only the kinds of
-    // light this batch has: a software rasterizer would run every kind's code for every light.
+    int kind = int(uPunctualPos[i].w);
+    // PN_PUNCTUAL_KINDS (a bit per PN_SAMPLE_*) compiles only the kinds of sample this batch
+    // has: a software rasterizer would run every kind's code for every light.
 #if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
-    if (type == PN_LIGHT_DIRECTIONAL) {
+    bool distant = kind != PN_SAMPLE_POINT && kind != PN_SAMPLE_SPOT;
+    if (distant) {
 #endif
 #if (PN_PUNCTUAL_KINDS & (PN_KIND_SUN | PN_KIND_DIRECTIONAL | PN_KIND_SKY_SHADOW)) != 0
       l = -uPunctualDir[i].xyz;
 #endif
 #if (PN_PUNCTUAL_KINDS & PN_KIND_SKY_SHADOW) != 0
-      if (uPunctualCone[i].x < 0.0) {
+      if (kind == PN_SAMPLE_SKY_SHADOW) {
         // Sky-shadow sample: its colour is radiance / pdf of a direction drawn by the sky's
         // luminance, so colour (n.l) is an unbiased estimate of the environment's irradiance
         // and colour (n.l) (V - 1) of what the shadow takes from the diffuse term.
@@ -58,7 +61,7 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
 #endif
 #if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
     }
-    if (type != PN_LIGHT_DIRECTIONAL) {
+    if (!distant) {
       vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
       float d2 = max(dot(toLight, toLight), 1e-8);
       l = toLight * inversesqrt(d2);
@@ -69,7 +72,7 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
         attenuation *= saturate(1.0 - x * x);
       }
 #if (PN_PUNCTUAL_KINDS & PN_KIND_SPOT) != 0
-      if (type == PN_LIGHT_SPOT) {
+      if (kind == PN_SAMPLE_SPOT) {
         float cd = dot(uPunctualDir[i].xyz, -l);
         float a = saturate(cd * uPunctualCone[i].x + uPunctualCone[i].y);
         attenuation *= a * a;
@@ -81,6 +84,13 @@ vec3 punctualTerm(Layers L, float occlusion, float skyLossWeight) {
 #if !PN_DIFFUSE_TRANSMISSION
     // (With diffuse transmission, light from behind passes through: no early out.)
     if (NoL <= 0.0 && (L.coat <= 0.0 || dot(L.coatN, l) <= 0.0)) continue;
+#endif
+#if PN_POINT_SHADOWS
+    if (kind == PN_SAMPLE_POINT) {
+      if (uPunctualShadow[i] >= 0) {
+        attenuation *= pointShadowVisibility(uPunctualShadow[i], vWorldPos, shadowNormal(l));
+      }
+    } else
 #endif
     attenuation *= shadowVisibility(uPunctualShadow[i], vWorldPos, shadowNormal(l));
     vec3 e = uPunctualColor[i] * attenuation;

@@ -14,7 +14,7 @@ float sampleShadowMap(int index, vec3 coord) {
 // Point lights: cube maps rendered once per scene (passes/point_shadow_pass.h), compared
 // against the depth the face's 90-degree projection gives the receiver. Only the variants with
 // point-light cube maps have them: the branch alone costs llvmpipe about 5 % of an area-light
-// frame (and the second map's unit holds the area lights' cache otherwise).
+// frame.
 #if PN_PUNCTUAL && PN_POINT_SHADOWS
 uniform highp samplerCubeShadow uPointShadow0;
 uniform highp samplerCubeShadow uPointShadow1;
@@ -49,13 +49,10 @@ vec3 shadowNormal(vec3 toLight) {
   return n;
 }
 
-// index >= 0: shadow map `index`; -1: unshadowed; <= -2: point-light cube map -2 - index.
+// index >= 0: shadow map `index`; -1: unshadowed. (Point lights' cube maps are looked up by
+// chunks/punctual_term.glsl, only in the batches that have them: llvmpipe runs both sides of
+// a branch, and the two cube lookups would run for every shadow test.)
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
-#if PN_PUNCTUAL && PN_POINT_SHADOWS
-  // Only where the batch has point-light cube maps: the two cube lookups would run for every
-  // shadow test otherwise (llvmpipe runs both sides of a branch).
-  if (index <= -2) return pointShadowVisibility(-2 - index, worldPos, normal);
-#endif
   if (index < 0) return 1.0;
   // Normal-offset bias grows with the texel footprint, which grows with distance.
   float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);

@@ -47,6 +47,28 @@ TEST(LightKindsTest, AreasAndSamplePointsFollowTheShape) {
   EXPECT_EQ(lightKind(LightType::Spot).samplePoint(l, {0.9f, 0.1f}), l.position);
 }
 
+TEST(LightKindsTest, APunctualDrawsSampleIsItsLightsOrASunOrASkyShadow) {
+  Light l;
+  for (const LightType t : {LightType::Point, LightType::Spot, LightType::Directional}) {
+    l.type = t;
+    // A punctual light's shader code is its plain sample's code.
+    EXPECT_EQ(static_cast<int>(punctualSample(l, false, false)), lightKind(t).shaderCode);
+    EXPECT_EQ(punctualSample(l, false, true), PunctualSample::SkyShadow);
+  }
+  l.type = LightType::Directional;
+  EXPECT_EQ(punctualSample(l, true, false), PunctualSample::Sun);
+  l.type = LightType::Spot;
+  EXPECT_EQ(punctualSample(l, true, false), PunctualSample::Spot) << "only directional is a sun";
+  // Every kind has its own bit, within the key's five.
+  uint32_t bits = 0;
+  for (const PunctualSampleKind& k : punctualSampleKinds()) {
+    EXPECT_EQ(bits & sampleBit(k.sample), 0u) << k.name;
+    bits |= sampleBit(k.sample);
+  }
+  EXPECT_EQ(bits, kAllPunctualSamples);
+  EXPECT_LT(kAllPunctualSamples, 32u);
+}
+
 TEST(LightKindsTest, EveryShaderGetsEachKindsCodeByName) {
   const gl::Defines d = passes::commonDefines();
   const auto value = [&](const std::string& name) {
@@ -58,7 +80,11 @@ TEST(LightKindsTest, EveryShaderGetsEachKindsCodeByName) {
   EXPECT_EQ(value("PN_LIGHT_DISK"), std::to_string(lightKind(LightType::Disk).shaderCode));
   EXPECT_EQ(value("PN_LIGHT_SPOT"), std::to_string(lightKind(LightType::Spot).shaderCode));
   EXPECT_EQ(value("PN_LIGHT_DIRECTIONAL"), "2");
-  EXPECT_EQ(value("PN_KIND_SKY_SHADOW"), std::to_string(passes::kKindSkyShadow));
+  // Punctual samples: a code and a PN_PUNCTUAL_KINDS bit each, from one table.
+  EXPECT_EQ(value("PN_SAMPLE_SKY_SHADOW"), std::to_string(static_cast<int>(PunctualSample::SkyShadow)));
+  EXPECT_EQ(value("PN_KIND_SKY_SHADOW"), std::to_string(sampleBit(PunctualSample::SkyShadow)));
+  EXPECT_EQ(value("PN_SAMPLE_SUN"), std::to_string(static_cast<int>(PunctualSample::Sun)));
+  EXPECT_EQ(punctualSampleKinds().size(), static_cast<size_t>(PunctualSample::Count));
   // The tone mappers' codes come from the C++ enum, one define each.
   EXPECT_EQ(value("PN_TONEMAP_PBR_NEUTRAL"), std::to_string(static_cast<int>(ToneMapper::PbrNeutral)));
   EXPECT_EQ(value("PN_TONEMAP_ACES"), std::to_string(static_cast<int>(ToneMapper::AcesFitted)));

@@ -120,7 +120,109 @@ Result<Program> Program::build(const ShaderSource& vertex, const ShaderSource& f
     return makeError("program " + vertex.name + " + " + fragment.name +
                      " failed to link: " + mapInfoLog(log, fragment.files));
   }
+  PN_TRY(p.assignUnits(vertex.name + " + " + fragment.name));
   return p;
+}
+
+Status checkSamplerCount(const std::string& program, int samplers, int available) {
+  if (samplers <= available) return {};
+  return makeError("program " + program + " uses " + std::to_string(samplers) +
+                   " textures; this GPU offers " + std::to_string(available) +
+                   " texture units per shader");
+}
+
+namespace {
+
+// The texture target a sampler type reads (0: not a sampler).
+GLenum samplerTarget(GLenum type) {
+  switch (type) {
+    case GL_SAMPLER_2D:
+    case GL_SAMPLER_2D_SHADOW:
+    case GL_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_2D:
+      return GL_TEXTURE_2D;
+    case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+      return GL_TEXTURE_2D_ARRAY;
+    case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_CUBE_SHADOW:
+    case GL_INT_SAMPLER_CUBE:
+    case GL_UNSIGNED_INT_SAMPLER_CUBE:
+      return GL_TEXTURE_CUBE_MAP;
+    case GL_SAMPLER_3D:
+    case GL_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_3D:
+      return GL_TEXTURE_3D;
+    default:
+      return 0;
+  }
+}
+
+}  // namespace
+
+Status Program::assignUnits(const std::string& what) {
+  const GLuint id = handle_.id();
+  GLint count = 0, longest = 0;
+  glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
+  glGetProgramiv(id, GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
+  std::string name(static_cast<size_t>(std::max(longest, 1)), '\0');
+  for (GLint i = 0; i < count; ++i) {
+    GLsizei length = 0;
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(id, static_cast<GLuint>(i), longest, &length, &size, &type, name.data());
+    const GLenum target = samplerTarget(type);
+    if (target == 0) continue;
+    PN_CHECK(size == 1, "sampler arrays are not supported (one unit per sampler name)");
+    samplers_.push_back({name.substr(0, static_cast<size_t>(length)), target});
+  }
+  std::sort(samplers_.begin(), samplers_.end(),
+            [](const Sampler& a, const Sampler& b) { return a.name < b.name; });
+  GLint available = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &available);
+  PN_TRY(checkSamplerCount(what, samplerCount(), available));
+  GLint previous = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &previous);
+  glUseProgram(id);
+  for (size_t u = 0; u < samplers_.size(); ++u) {
+    glUniform1i(location(samplers_[u].name), static_cast<GLint>(u));
+  }
+  // The previous program may have been deleted while in use: gone once we switched away.
+  const GLuint restore = static_cast<GLuint>(previous);
+  glUseProgram(restore != 0 && glIsProgram(restore) ? restore : 0);
+  return {};
+}
+
+int Program::unit(std::string_view name) const {
+  for (size_t u = 0; u < samplers_.size(); ++u) {
+    if (samplers_[u].name == name) return static_cast<int>(u);
+  }
+  return -1;
+}
+
+void Program::rebind() const {
+  for (size_t u = 0; u < samplers_.size(); ++u) {
+    if (samplers_[u].bound == 0) continue;
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+    glBindTexture(samplers_[u].target, samplers_[u].bound);
+  }
+}
+
+void Program::release(std::string_view name) const {
+  const int u = unit(name);
+  if (u < 0) return;
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+  glBindTexture(samplers_[static_cast<size_t>(u)].target, 0);
+  samplers_[static_cast<size_t>(u)].bound = 0;
+}
+
+std::string Program::unboundSampler() const {
+  for (const Sampler& s : samplers_) {
+    if (s.bound == 0) return s.name;
+  }
+  return {};
 }
 
 void Program::use() const {

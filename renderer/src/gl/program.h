@@ -1,4 +1,6 @@
-// Program: a move-only linked GLSL ES 3.00 program with cached uniform locations.
+// Program: a move-only linked GLSL ES 3.00 program with cached uniform locations, whose
+// samplers get their texture units at link: each program numbers the samplers it uses from 0,
+// so no two roles share a unit by hand and no pass names a unit; passes bind by sampler name.
 // ShaderLibrary: composes shaders from the GLSL files embedded at build time (glsl/), adding
 // the shared prelude, resolved #include "chunk" lines and generated #defines, compiles them,
 // and caches each program by its files and defines. Compile and link errors come back as
@@ -59,10 +61,47 @@ class Program {
   void set(std::string_view name, std::span<const glm::mat4> v) const;
   GLuint id() const { return handle_.id(); }
 
+  // The unit the sampler `name` got at link, or -1 where this program does not use it (the
+  // linker dropped it, or the variant's #defines left it out).
+  int unit(std::string_view name) const;
+  int samplerCount() const { return static_cast<int>(samplers_.size()); }
+  // Puts `texture` (Texture2D, Texture2DArray or TextureCube) on the sampler's unit, if this
+  // program uses the sampler: a caller binds every sampler a variant might read.
+  template <class Texture>
+  void bind(std::string_view sampler, const Texture& texture) const {
+    const int u = unit(sampler);
+    if (u < 0) return;
+    texture.bind(u);
+    samplers_[static_cast<size_t>(u)].bound = texture.id();
+  }
+  // Binds again what bind() last put on this program's units: a pass that returns to a program
+  // it set up, after another program's binds took the same units.
+  void rebind() const;
+  // Leaves the sampler's unit empty: a render target sampled here and drawn into later must
+  // not be bound then (a feedback loop to WebGL).
+  void release(std::string_view sampler) const;
+  // The first sampler this program uses that bind() never filled ("" when all are): a unit
+  // left to chance may hold a target being drawn into.
+  std::string unboundSampler() const;
+
  private:
+  struct Sampler {
+    std::string name;
+    GLenum target = 0;  // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP
+    mutable GLuint bound = 0;
+  };
+  // Reads the linked program's samplers and gives each its unit (in name order, so that a
+  // program's units do not depend on the driver's listing).
+  Status assignUnits(const std::string& what);
+
   Handle<deleteProgram> handle_;
   mutable std::unordered_map<std::string, GLint> locations_;
+  std::vector<Sampler> samplers_;  // samplers_[u]: the sampler on unit u
 };
+
+// An error naming the program and both numbers when it needs more texture units than the
+// context offers (WebGL2 and OpenGL ES 3.0 guarantee 16).
+Status checkSamplerCount(const std::string& program, int samplers, int available);
 
 class ShaderLibrary {
  public:

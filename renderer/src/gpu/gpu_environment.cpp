@@ -75,12 +75,10 @@ Result<std::unique_ptr<GpuEnvironment>> GpuEnvironment::create(const PackedEnvir
   return ge;
 }
 
-void GpuEnvironment::bind(const gl::Program& program, int cubeUnit, int lutUnit, float intensity,
+void GpuEnvironment::bind(const gl::Program& program, float intensity,
                           const glm::mat3& rotation) const {
-  cube_.bind(cubeUnit);
-  lut_.bind(lutUnit);
-  program.set("uEnvSpecular", cubeUnit);
-  program.set("uDfgLut", lutUnit);
+  program.bind("uEnvSpecular", cube_);
+  program.bind("uDfgLut", lut_);
   program.set("uShIrradiance", std::span<const glm::vec3>(irradianceSh_));
   program.set("uEnvMaxMip", static_cast<float>(cube_.levels() - 1));
   program.set("uEnvIntensity", intensity);

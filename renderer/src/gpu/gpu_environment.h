@@ -18,9 +18,9 @@ class GpuEnvironment {
  public:
   static Result<std::unique_ptr<GpuEnvironment>> create(const PackedEnvironment& env);
 
-  // Binds the cube to `cubeUnit`, the LUT to `lutUnit` and sets the environment uniforms.
-  void bind(const gl::Program& program, int cubeUnit, int lutUnit, float intensity,
-            const glm::mat3& rotation) const;
+  // Binds the cube and the LUT to the program's uEnvSpecular and uDfgLut and sets the
+  // environment uniforms (the program in use).
+  void bind(const gl::Program& program, float intensity, const glm::mat3& rotation) const;
   int mipCount() const { return cube_.levels(); }
 
  private:

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "gpu/gpu_scene.h"
-#include "gpu/texture_units.h"
 #include "image/resize.h"
 
 namespace penumbra {
@@ -251,16 +250,9 @@ void GpuScene::bindMaterial(const gl::Program& program, int index) const {
     const bool has = slot < kCoreTextureSlots ? gm.textures[slot] != nullptr : gm.layer[slot] >= 0;
     if (has) textureMask |= 1 << slot;
     if (slot >= kCoreTextureSlots) continue;
-    program.set(kSamplers[slot], slot);
-    if (has) {
-      gm.textures[slot]->bind(slot);
-    } else {
-      fallback_.bind(slot);
-    }
+    program.bind(kSamplers[slot], has ? *gm.textures[slot] : fallback_);
   }
-  const int layersUnit = unitOf(TextureUnit::MaterialLayers);
-  program.set("uMaterialLayers", layersUnit);
-  (gm.layers ? gm.layers : fallbackLayers_).bind(layersUnit);
+  program.bind("uMaterialLayers", gm.layers ? gm.layers : fallbackLayers_);
   program.set("uTextureMask", textureMask);
   program.set("uSlotUvS", std::span<const glm::vec4>(rowS));
   program.set("uSlotUvT", std::span<const glm::vec4>(rowT));

@@ -32,12 +32,12 @@ struct GpuPrimitive {
 };
 
 // A material's textures. The five core slots (TextureSlot::BaseColor..Emissive) are 2D
-// textures on units 0..4, shared between materials and possibly block-compressed. The
+// textures, a sampler each, shared between materials and possibly block-compressed. The
 // extension slots (clearcoat, sheen, specular, transmission, volume, iridescence,
-// anisotropy, diffuse transmission) are layers of one RGBA8
-// texture array per material on TextureUnit::MaterialLayers: all of them cost one unit, which
-// is what lets every KHR_materials_* texture be sampled within WebGL2's 16 (the environment,
-// shadows, probes and caches take the other ten). Layers share the array's size, the largest
+// anisotropy, diffuse transmission) are layers of one RGBA8 texture array per material
+// (uMaterialLayers): all of them cost one texture unit, which is what lets every
+// KHR_materials_* texture be sampled within WebGL2's 16 (the environment, shadows, probes and
+// caches take the others). Layers share the array's size, the largest
 // of the material's extension images (smaller ones are resized on upload), and its sampler,
 // the first extension texture's (the loader warns when the others differ); colour layers keep
 // their sRGB bytes and are decoded in the shader.
@@ -92,7 +92,7 @@ class GpuScene {
   int variantCount() const { return variantCount_; }
   size_t textureCount() const { return textures_.size(); }
 
-  // Sets the material uniforms and binds its textures (units 0..4 and its layers' array) on a
+  // Sets the material uniforms and binds its textures (its five samplers and its layers' array) on a
   // program in use.
   void bindMaterial(const gl::Program& program, int material) const;
   // True when a material cuts out (MASK), covers partially (BLEND) or transmits light: its

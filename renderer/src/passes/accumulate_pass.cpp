@@ -18,10 +18,8 @@ void AccumulatePass::draw(const RenderTargets& targets, int n) const {
   targets.accumulation[next].framebuffer.bind();
   gl::setViewport(0, 0, targets.width, targets.height);
   const gl::Program& p = pass_.begin();
-  targets.accumulation[prev].color.bind(0);
-  targets.frame.color.bind(1);
-  p.set("uPrevious", 0);
-  p.set("uCurrent", 1);
+  p.bind("uPrevious", targets.accumulation[prev].color);
+  p.bind("uCurrent", targets.frame.color);
   p.set("uWeight", 1.0f / static_cast<float>(n));
   pass_.draw();
 }
@@ -34,8 +32,7 @@ void AccumulatePass::upsampleFirst(const RenderTargets& targets, int drawnWidth,
   targets.accumulation[static_cast<std::size_t>(1 - targets.current)].framebuffer.bind();
   gl::setViewport(0, 0, targets.width, targets.height);
   const gl::Program& p = upsample_.begin();
-  targets.frame.color.bind(0);
-  p.set("uCurrent", 0);
+  p.bind("uCurrent", targets.frame.color);
   p.set("uDrawnSize", glm::vec2(drawnWidth, drawnHeight));
   upsample_.draw();
 }

@@ -29,25 +29,37 @@ Status EffectChain::ensureTargets(int width, int height) {
   return {};
 }
 
-Result<const gl::Texture2D*> EffectChain::run(gl::ShaderLibrary& library, const gl::Texture2D& mean,
-                                              int width, int height, const RenderSettings& settings,
-                                              bool halfFloat) {
+void EffectOutput::bind() const {
+  gl::Framebuffer::bindExternal(framebuffer);
+  gl::setViewport(x, y, width, height);
+}
+
+Status EffectChain::draw(gl::ShaderLibrary& library, const gl::Texture2D& mean, int width,
+                         int height, const RenderSettings& settings, bool halfFloat,
+                         const EffectOutput& output) {
   if (effects_.empty()) {
     for (EffectFactory make : registeredEffects()) effects_.push_back(make());
   }
   const gl::Texture2D* radiance = &mean;
-  if (!halfFloat) return radiance;  // (documented: effects need RGBA16F targets)
   size_t next = 0;
-  for (auto& effect : effects_) {
-    if (!effect->enabled(settings)) continue;
-    PN_TRY(ensureTargets(width, height));
-    const ColorTarget& out = targets_[next];
-    PN_TRY(effect->apply(library, {radiance, width, height, &settings}, out));
-    PN_TRY(gl::checkError(std::string("post effect ") + effect->name()));
-    radiance = &out.color;
-    next = 1 - next;
+  for (size_t i = 0; i < effects_.size(); ++i) {
+    Effect& effect = *effects_[i];
+    const bool last = i + 1 == effects_.size();
+    PN_CHECK(!last || effect.enabled(settings), "the chain's last member is always on");
+    // (documented: the effects before the last need RGBA16F targets)
+    if (!last && (!halfFloat || !effect.enabled(settings))) continue;
+    if (!last) PN_TRY(ensureTargets(width, height));
+    const ColorTarget* target = last ? nullptr : &targets_[next];
+    const EffectOutput out =
+        last ? output : EffectOutput{target->framebuffer.id(), 0, 0, width, height};
+    PN_TRY(effect.apply(library, {radiance, width, height, &settings}, out));
+    PN_TRY(gl::checkError(std::string("post effect ") + effect.name()));
+    if (!last) {
+      radiance = &target->color;
+      next = 1 - next;
+    }
   }
-  return radiance;
+  return {};
 }
 
 }  // namespace penumbra::passes

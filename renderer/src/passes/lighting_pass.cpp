@@ -57,20 +57,13 @@ Result<LightingPass> LightingPass::create(gl::ShaderLibrary& library) {
   return pass;
 }
 
+PunctualSample LightingPass::sampleOf(const PunctualDraw& d, const RenderSettings& s) {
+  return punctualSample(*d.light, !d.skyLoss && directionalDisk(*d.light, s) > 0.0f, d.skyLoss);
+}
+
 uint32_t LightingPass::punctualKinds(const LightingBatch& b) {
   uint32_t kinds = 0;
-  for (const PunctualDraw& d : b.punctual) {
-    const Light& l = *d.light;
-    if (d.skyLoss) {
-      kinds |= kKindSkyShadow;
-    } else if (l.type == LightType::Point) {
-      kinds |= kKindPoint;
-    } else if (l.type == LightType::Spot) {
-      kinds |= kKindSpot;
-    } else {
-      kinds |= directionalDisk(l, *b.settings) > 0.0f ? kKindSun : kKindDirectional;
-    }
-  }
+  for (const PunctualDraw& d : b.punctual) kinds |= sampleBit(sampleOf(d, *b.settings));
   return kinds;
 }
 
@@ -158,6 +151,7 @@ Status LightingPass::drawByMaterial(const LightingVariant& v, const GpuScene& sc
         ready.push_back(current);
       } else {
         current->use();
+        current->rebind();  // its units held another program's textures since
       }
     }
     if (instances > 0) {
@@ -173,7 +167,7 @@ void LightingPass::setUniforms(const gl::Program& p, const LightingBatch& b,
                                const glm::mat3& envRotation) {
   setViewUniforms(p, b, envRotation);
   setShadowSlots(p, b);
-  setAreaUniforms(p, b);  // after the point shadows' binds (setViewUniforms): see there
+  setAreaUniforms(p, b);
   setPunctualUniforms(p, b);
   if (b.accumulateFrame > 0) setAccumulation(p, b);
 }
@@ -186,39 +180,30 @@ void LightingPass::setViewUniforms(const gl::Program& p, const LightingBatch& b,
   p.use();
   p.set("uViewProj", cm.projection * cm.view);
   p.set("uViewOrigin", cm.viewOrigin);
-  b.environment->bind(p, kUnitEnvCube, kUnitLut, s.environmentIntensity, envRotation);
+  b.environment->bind(p, s.environmentIntensity, envRotation);
   // From frame 2 the accumulation holds at least frame 1: its radiance can be reused.
   p.set("uIndirectEnabled", s.progressive.screenSpaceIndirect ? 1 : 0);
   p.set("uIndirectClamp",
         s.progressive.indirectClamp > 0.0f ? s.progressive.indirectClamp : 3.0e38f);
-  (b.occlusion ? b.targets->prepass.color : dummy_).bind(kUnitPrepass);
-  (b.occlusion && b.targets->occlusion.color ? b.targets->occlusion.color : dummy_)
-      .bind(kUnitOcclusion);
-  p.set("uOcclusion", kUnitOcclusion);
+  p.bind("uPrepass", b.occlusion ? b.targets->prepass.color : dummy_);
+  p.bind("uOcclusion",
+         b.occlusion && b.targets->occlusion.color ? b.targets->occlusion.color : dummy_);
   p.set("uOcclusionBlock", std::max(b.targets->occlusionBlock, 1));
-  b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
-  p.set("uPrepass", kUnitPrepass);
-  p.set("uAccumulated", kUnitAccumulated);
+  p.bind("uAccumulated", b.targets->accumulation[static_cast<size_t>(b.targets->current)].color);
   p.set("uOcclusionDistance", b.occlusionDistance);
   p.set("uView", cm.view);
   p.set("uProjection", cm.projection);
   p.set("uViewportSize", glm::vec2(drawnSize(b)));
   p.set("uSequence", b.sequence);
-  b.shadows->bind(p, kUnitShadow);
-  b.pointShadows->bind(p, kUnitPointShadow);
+  b.shadows->bind(p);
+  b.pointShadows->bind(p);
   p.set("uEnvWeight", b.first ? 1.0f : 0.0f);
   p.set("uCoverageFrame", b.coverageFrame);
   p.set("uCoverageStream", 0);
-  if (b.probes) {
-    b.probes->bind(p);
-  } else {
-    dummy_.bind(kUnitProbeAtlas);
-    p.set("uProbeAtlas", kUnitProbeAtlas);
-  }
-  if (readsProbeCache(b)) {  // (declared only by the programs that read it)
-    b.targets->probeCache.bind(kUnitProbeCache);
-    p.set("uProbeCache", kUnitProbeCache);
-  }
+  p.bind("uProbeAtlas", dummy_);  // (an inactive volume binds none)
+  if (b.probes) b.probes->bind(p);
+  // Not while a program writes the cache (its writers do not declare the sampler either).
+  if (readsProbeCache(b)) p.bind("uProbeCache", b.targets->probeCache);
 }
 
 // The batch's shadow-map slots: each area sample's, and the punctual samples' that have one.
@@ -261,11 +246,9 @@ void LightingPass::setAreaUniforms(const gl::Program& p, const LightingBatch& b)
   p.set("uAreaShape", std::span<const glm::vec4>(shape));
   p.set("uAreaRadiance", std::span<const glm::vec3>(radiance));
   if (readsLightCache(b)) {
-    // After the point shadows' binds: the cache takes the second one's unit.
     std::vector<int> layers;
     for (const AreaSampleDraw& a : b.area) layers.push_back(lightCacheLayer(b, a.lightIndex));
-    b.targets->lightCache.bind(kUnitLightCache);
-    p.set("uLightCache", kUnitLightCache);
+    p.bind("uLightCache", b.targets->lightCache);
     p.set("uAreaLayer", std::span<const int>(layers));
   }
 }
@@ -282,21 +265,26 @@ void LightingPass::setPunctualUniforms(const gl::Program& p, const LightingBatch
   for (const PunctualDraw& pd : b.punctual) {
     if (static_cast<int>(ppos.size()) >= kMaxPunctualLights) break;
     const Light& l = *pd.light;
-    ppos.emplace_back(l.position, static_cast<float>(lightKind(l.type).shaderCode));
+    const PunctualSample sample = sampleOf(pd, *b.settings);
+    ppos.emplace_back(l.position, static_cast<float>(sample));
     pdir.emplace_back(pd.direction, l.range);
-    disk.emplace_back(l.direction, pd.skyLoss ? 0.0f : directionalDisk(l, *b.settings));
-    if (pd.pointShadow >= 0) {
-      punctualShadow.push_back(-2 - pd.pointShadow);  // chunks/shadows.glsl's encoding
-      pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;
-      pointParams[static_cast<size_t>(pd.pointShadow)] = pd.pointView.params;
+    disk.emplace_back(l.direction, sample == PunctualSample::Sun ? directionalDisk(l, *b.settings)
+                                                                  : 0.0f);
+    // The shadow: a point sample's cube map, any other's 2D map (-1: unshadowed).
+    if (sample == PunctualSample::Point) {
+      punctualShadow.push_back(pd.pointShadow);
+      if (pd.pointShadow >= 0) {
+        pointPos[static_cast<size_t>(pd.pointShadow)] = pd.pointView.position;
+        pointParams[static_cast<size_t>(pd.pointShadow)] = pd.pointView.params;
+      }
     } else {
       punctualShadow.push_back(pd.shadowSlot);
     }
     pcol.push_back(l.color * l.intensity * pd.weight);
     const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
     const float scale = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
-    // A negative cone scale marks a sky-shadow sample (directional lights have no cone).
-    cone.push_back(pd.skyLoss ? glm::vec2(-1.0f, 0.0f) : glm::vec2(scale, -cosOuter * scale));
+    cone.push_back(sample == PunctualSample::Spot ? glm::vec2(scale, -cosOuter * scale)
+                                                  : glm::vec2(0.0f));
   }
   p.set("uPunctualPos", std::span<const glm::vec4>(ppos));
   p.set("uPunctualDir", std::span<const glm::vec4>(pdir));
@@ -324,7 +312,7 @@ Status LightingPass::drawBackground(const LightingBatch& b, const GpuEnvironment
   }
   const FullscreenPass& pass = *slot;
   const gl::Program& bg = pass.begin(/*depthTest=*/true);
-  shown.bind(bg, kUnitEnvCube, kUnitLut, b.settings->environmentIntensity, envRotation);
+  shown.bind(bg, b.settings->environmentIntensity, envRotation);
   bg.set("uInvViewProj", glm::inverse(camera.projection * camera.view));
   bg.set("uBackgroundBlur", blur);
   bg.set("uBackgroundAlpha", alpha);
@@ -347,8 +335,7 @@ Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& env
 }
 
 void LightingPass::setAccumulation(const gl::Program& p, const LightingBatch& b) {
-  b.targets->accumulation[static_cast<size_t>(b.targets->current)].color.bind(kUnitAccumulated);
-  p.set("uPrevious", kUnitAccumulated);
+  p.bind("uPrevious", b.targets->accumulation[static_cast<size_t>(b.targets->current)].color);
   p.set("uWeight", 1.0f / static_cast<float>(b.accumulateFrame));
 }
 
@@ -587,10 +574,8 @@ Status LightingPass::composeTransmission(const LightingBatch& b) {
                         [&](const gl::Program& p) {
                           setUniforms(p, compose, envRotation);
                           // After setUniforms, which binds the probe cache's units (shared).
-                          t.behind.color.bind(kUnitBehind);
-                          t.glassLight.color.bind(kUnitGlassLight);
-                          p.set("uBehind", kUnitBehind);
-                          p.set("uGlassLight", kUnitGlassLight);
+                          p.bind("uBehind", t.behind.color);
+                          p.bind("uGlassLight", t.glassLight.color);
                           p.set("uBehindDepthValid", b.occlusion ? 1 : 0);
                         });
 }

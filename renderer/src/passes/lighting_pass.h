@@ -132,9 +132,11 @@ class LightingPass {
   static int lightCacheLayer(const LightingBatch& b, int lightIndex);
   // Whether batch b reads its probe volume's per-view cache (it has been made).
   static bool readsProbeCache(const LightingBatch& b);
-  // The kinds of punctual samples in a batch (PunctualKindBits, passes/limits.h): only their
+  // The kinds of punctual samples in a batch (a bit per PunctualSample, scene/light_kinds.h): only their
   // code is compiled.
   static uint32_t punctualKinds(const LightingBatch& b);
+  // The kind of sample a punctual draw is (scene/light_kinds.h).
+  static PunctualSample sampleOf(const PunctualDraw& d, const RenderSettings& s);
   // The batch's sample counts, and where its area samples' light changes, into v: the
   // shader's loops over samples then run to a constant and unroll, so every uniform array is
   // read at a constant index (llvmpipe reads one at a loop counter lane by lane). A plan has a

@@ -12,6 +12,7 @@
 #include "gl/program.h"
 #include "gpu/material_features.h"
 #include "penumbra/error.h"
+#include "scene/light_kinds.h"
 
 namespace penumbra::passes {
 
@@ -26,13 +27,15 @@ namespace penumbra::passes {
   X(probes, PN_PROBES, 1)                /* the probe volume is on */                            \
   X(probeCache, PN_PROBE_CACHE, 1)       /* its per-view cache is read */                        \
   X(pointShadows, PN_POINT_SHADOWS, 1)   /* a punctual sample has a cube shadow map */           \
-  X(punctualKinds, PN_PUNCTUAL_KINDS, 5) /* PunctualKindBits (passes/limits.h) */                \
+  X(punctualKinds, PN_PUNCTUAL_KINDS, 5) /* a bit per PunctualSample (scene/light_kinds.h) */    \
   X(lightCache, PN_LIGHT_CACHE, 1)       /* area samples read the lights' cache */               \
   X(lightCacheWrite, PN_LIGHT_CACHE_WRITE, 3) /* lights written to that cache (0: none) */       \
   X(areaCount, PN_AREA_COUNT, 3)              /* the batch's area samples */                     \
   X(areaStarts, PN_AREA_STARTS, 4)            /* samples whose light is not the last one's */    \
   X(punctualCount, PN_PUNCTUAL_COUNT, 4)      /* the batch's punctual samples */                 \
   X(accumulate, PN_ACCUMULATE, 1)             /* the batch adds its sample to the mean */
+
+static_assert(static_cast<int>(PunctualSample::Count) <= 5, "PN_PUNCTUAL_KINDS has 5 bits");
 
 struct LightingVariant {
 #define PN_VARIANT_FIELD(field, define, bits) uint32_t field = 0;

@@ -51,16 +51,11 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
   gl::setViewport(0, 0, t.occlusionWidth(in.block), t.occlusionHeight(in.block));
   const FullscreenPass& pass = probes ? *probesPass : pass_;
   const gl::Program& p = pass.begin();
-  in.environment->bind(p, kUnitEnvCube, kUnitLut, in.environmentIntensity, in.environmentRotation);
+  in.environment->bind(p, in.environmentIntensity, in.environmentRotation);
   if (probes) in.probes->bind(p);
-  if (cached) {
-    t.probeCache.bind(kUnitProbeCache);
-    p.set("uProbeCache", kUnitProbeCache);
-  }
-  t.prepass.color.bind(kUnitPrepass);
-  t.accumulation[static_cast<size_t>(t.current)].color.bind(kUnitAccumulated);
-  p.set("uPrepass", kUnitPrepass);
-  p.set("uAccumulated", kUnitAccumulated);
+  if (cached) p.bind("uProbeCache", t.probeCache);
+  p.bind("uPrepass", t.prepass.color);
+  p.bind("uAccumulated", t.accumulation[static_cast<size_t>(t.current)].color);
   p.set("uIndirectEnabled", in.indirect ? 1 : 0);
   p.set("uIndirectClamp", in.indirectClamp > 0.0f ? in.indirectClamp : 3.0e38f);
   p.set("uOcclusionDistance", in.occlusionDistance);
@@ -81,18 +76,16 @@ Status OcclusionPass::trace(const OcclusionInputs& in) {
 void OcclusionPass::filter(const OcclusionInputs& in) {
   RenderTargets& t = *in.targets;
   const gl::Program& p = filter_.begin();
-  t.prepass.color.bind(kUnitPrepass);
-  p.set("uRays", kUnitOcclusion);
-  p.set("uPrepass", kUnitPrepass);
+  p.bind("uPrepass", t.prepass.color);
   p.set("uBlock", in.block);
   p.set("uStrength", in.filter);
   // Along rows into the spare target, then down columns back into the one the lighting reads.
   t.occlusionFiltered.framebuffer.bind();
-  t.occlusion.color.bind(kUnitOcclusion);
+  p.bind("uRays", t.occlusion.color);
   p.set("uVertical", 0);
   filter_.draw();
   t.occlusion.framebuffer.bind();
-  t.occlusionFiltered.color.bind(kUnitOcclusion);
+  p.bind("uRays", t.occlusionFiltered.color);
   p.set("uVertical", 1);
   filter_.draw();
 }

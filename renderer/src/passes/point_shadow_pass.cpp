@@ -84,10 +84,9 @@ Result<PointShadowView> PointShadowPass::ensure(int index, const GpuScene& scene
   return views_[k];
 }
 
-void PointShadowPass::bind(const gl::Program& program, int firstUnit) const {
+void PointShadowPass::bind(const gl::Program& program) const {
   for (int i = 0; i < kMaxPointShadows; ++i) {
-    maps_[static_cast<size_t>(i)].bind(firstUnit + i);
-    program.set("uPointShadow" + std::to_string(i), firstUnit + i);
+    program.bind("uPointShadow" + std::to_string(i), maps_[static_cast<size_t>(i)]);
   }
 }
 

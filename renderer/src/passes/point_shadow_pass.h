@@ -34,8 +34,8 @@ class PointShadowPass {
   Result<PointShadowView> ensure(int index, const GpuScene& scene, const glm::vec3& position);
   // The scene changed: every map is stale.
   void invalidate();
-  // Binds the maps to units firstUnit.. and sets uPointShadow0.. on a program in use.
-  void bind(const gl::Program& program, int firstUnit) const;
+  // Binds the maps to the program's uPointShadow0, uPointShadow1, ...
+  void bind(const gl::Program& program) const;
 
  private:
   ShadowCasterPrograms programs_;

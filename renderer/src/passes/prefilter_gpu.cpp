@@ -122,8 +122,7 @@ Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterO
     PN_TRY(fb.checkComplete());
     gl::setViewport(0, 0, size, size);
     const gl::Program& p = toCube->begin();
-    pano->bind(0);
-    p.set("uPanorama", 0);
+    p.bind("uPanorama", *pano);
     p.set("uFace", face);
     p.set("uFaceSize", static_cast<float>(size));
     p.set("uLod", lod);
@@ -157,8 +156,7 @@ Result<PackedEnvironment> prefilterGpu(const Image& input, const ibl::PrefilterO
       const bool exact = r >= 0.5f;
       const passes::FullscreenPass& pass = exact ? *direct : *ggx;
       const gl::Program& p = pass.begin();
-      source->bind(0);
-      p.set("uSource", 0);
+      p.bind("uSource", *source);
       p.set("uFace", face);
       p.set("uFaceSize", static_cast<float>(s));
       p.set("uAlpha", r * r);

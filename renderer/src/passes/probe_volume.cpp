@@ -161,9 +161,8 @@ glm::vec2 ProbeVolume::lightPoint(uint32_t seed) const {
 }
 
 void ProbeVolume::bind(const gl::Program& p) const {
-  p.set("uProbeAtlas", kUnitProbeAtlas);
   if (!active()) return;
-  atlas_.bind(kUnitProbeAtlas);
+  p.bind("uProbeAtlas", atlas_);
   p.set("uProbeOrigin", grid_.origin);
   p.set("uProbeSpacing", grid_.spacing);
   p.set("uProbeCounts", glm::vec3(grid_.counts));
@@ -308,8 +307,7 @@ Status ProbeVolume::capture(LightingPass& lighting, const ProbeCaptureInputs& in
     const gl::Program& prog = map == 0 ? *project_ : map == 1 ? *projectDepth_ : *projectRadiance_;
     const int tile = layout.tile[map];
     prog.use();
-    capture_.bind(0);
-    prog.set("uCapture", 0);
+    prog.bind("uCapture", capture_);
     prog.set("uFaceForward", std::span<const glm::vec3>(kForward));
     prog.set("uFaceRight", std::span<const glm::vec3>(right));
     prog.set("uFaceUp", std::span<const glm::vec3>(kUp));

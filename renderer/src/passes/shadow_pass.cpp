@@ -181,9 +181,8 @@ void drawShadowCasters(const ShadowCasterPrograms& programs, const GpuScene& sce
   }
 }
 
-void ShadowPass::bind(const gl::Program& program, int unit) const {
-  maps_.bind(unit);
-  program.set("uShadowMaps", unit);
+void ShadowPass::bind(const gl::Program& program) const {
+  program.bind("uShadowMaps", maps_);
 }
 
 }  // namespace penumbra::passes

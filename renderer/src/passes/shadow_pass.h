@@ -74,9 +74,8 @@ class ShadowPass {
                          const glm::vec3& origin, const glm::vec3& direction, int coverageFrame,
                          int coverageStream);
   int size() const { return size_; }
-  // Binds the maps (one texture array, a layer per slot) to `unit` and sets uShadowMaps on a
-  // program in use.
-  void bind(const gl::Program& program, int unit) const;
+  // Binds the maps (one texture array, a layer per slot) to the program's uShadowMaps.
+  void bind(const gl::Program& program) const;
   int mapSize() const { return size_; }
   int64_t memoryBytes() const { return maps_.bytes(); }
 

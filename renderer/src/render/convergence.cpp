@@ -25,8 +25,7 @@ Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
   auto& t = *targets;
   const auto& mean = t.accumulation[static_cast<size_t>(t.current)];
   const auto displayUniforms = [&](const gl::Program& p) {
-    mean.color.bind(0);
-    p.set("uCurrent", 0);
+    p.bind("uCurrent", mean.color);
     p.set("uExposureScale", std::exp2(settings.exposure));
     p.set("uToneMapper", static_cast<int>(settings.toneMapper));
   };
@@ -42,19 +41,20 @@ Result<progressive::TileChanges> Renderer::Impl::measureTiles(int frame) {
     gl::setViewport(0, 0, tw, th);
     const gl::Program& p = convergence->begin();
     displayUniforms(p);
-    t.checkpoints[kept(changes.against)].color.bind(1);
-    p.set("uPrevious", 1);
+    p.bind("uPrevious", t.checkpoints[kept(changes.against)].color);
     convergence->draw();
-    gl::Texture2D::unbind(1);
+    p.release("uPrevious");
+    p.release("uCurrent");
   }
   // This checkpoint's displayed image replaces the oldest kept (an empty slot is 0). Queued
   // before the read-back below waits for the GPU.
   const size_t slot = kept(*std::min_element(checkpointFrames.begin(), checkpointFrames.end()));
   t.checkpoints[slot].framebuffer.bind();
   gl::setViewport(0, 0, t.width, t.height);
-  displayUniforms(checkpointSnapshot->begin());
+  const gl::Program& snapshot = checkpointSnapshot->begin();
+  displayUniforms(snapshot);
   checkpointSnapshot->draw();
-  gl::Texture2D::unbind(0);
+  snapshot.release("uCurrent");
   checkpointFrames[slot] = frame;
   if (changes.against > 0) {
     const std::vector<float> texels = t.convergenceTiles.framebuffer.readRgbaFloat(0, 0, 0, tw, th);
@@ -96,11 +96,10 @@ Status Renderer::Impl::skipTiles(std::span<const uint8_t> mask) {
              .cull = gl::Cull::None,
              .colorWrite = false});
   gl::setStencil(gl::StencilMode::Mark);
-  t.tileMask.bind(0);
-  p.set("uMask", 0);
+  p.bind("uMask", t.tileMask);
   tileMaskPass->draw();
   gl::setStencil(gl::StencilMode::Off);
-  gl::Texture2D::unbind(0);
+  p.release("uMask");
   gl::apply({});
   // Both accumulation targets hold the skipped tiles' mean from now on, so the ping-pong,
   // which no longer writes them, reads the same mean from either.

@@ -1,6 +1,10 @@
 // Renderer::Impl, the renderer's state and frame scheduling, shared by renderer.cpp (the
-// public calls that set things up and step frames) and renderer_output.cpp (read-back, tone
-// mapping and presenting). Private to the library.
+// public calls that set things up and step frames), renderer_output.cpp (read-back, tone
+// mapping and presenting), frame_build.cpp (a frame's units of GL work) and convergence.cpp.
+// Its state comes in parts a reader can hold, each in its own header: GpuPasses (what draws),
+// SceneState (what is drawn), ConvergenceState (an automatic view's measuring); Impl itself
+// holds the settings, the controller, the per-view caches' counters, the frame being built
+// and the statistics, and the calls that tie the parts together. Private to the library.
 #pragma once
 
 #include "penumbra/renderer.h"
@@ -13,28 +17,19 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "gl/capabilities.h"
 #include "gl/errors.h"
 #include "gl/state_guard.h"
-#include "gpu/gpu_environment.h"
-#include "gpu/gpu_scene.h"
-#include "passes/accumulate_pass.h"
 #include "passes/camera_math.h"
-#include "passes/effect_chain.h"
-#include "passes/fullscreen_pass.h"
-#include "passes/lighting_pass.h"
-#include "passes/limits.h"
-#include "passes/occlusion_pass.h"
-#include "passes/prepass.h"
-#include "passes/probe_volume.h"
-#include "passes/shadow_pass.h"
-#include "passes/targets.h"
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
 #include "progressive/first_light.h"
 #include "progressive/frame_planner.h"
 #include "progressive/light_cache.h"
+#include "render/convergence_state.h"
+#include "render/gpu_passes.h"
 #include "render/light_samples.h"
+#include "render/pending_frame.h"
+#include "render/scene_state.h"
 #include "scene/light_kinds.h"
 
 namespace penumbra {
@@ -47,51 +42,14 @@ inline int cameraCoverageFrame(const FramePlan& plan) {
   return plan.frame > 1 ? plan.frame - 2 : -1;
 }
 
-struct Renderer::Impl : progressive::FrameRenderer {
+struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, ConvergenceState {
   RendererOptions options;
-  gl::Capabilities caps;
-  gl::ShaderLibrary library;
   RenderSettings settings;
   progressive::Controller controller;
-  std::optional<passes::RenderTargets> targets;
-  std::optional<passes::ShadowPass> shadows;
-  std::optional<passes::PointShadowPass> pointShadows;
-  std::optional<passes::Prepass> prepass;
-  std::optional<passes::LightingPass> lighting;
-  std::optional<passes::AccumulatePass> accumulate;
-  std::optional<passes::OcclusionPass> occlusionPass;
-  std::optional<passes::FullscreenPass> tonemap;
-  std::optional<passes::FullscreenPass> tonemapFiltered;  // made on first use (an upscale)
-  passes::EffectChain effects;                            // post effects before tone mapping
-  std::optional<passes::FullscreenPass> convergence;      // made on an automatic view's first use
-  std::optional<passes::FullscreenPass> checkpointSnapshot;  // likewise
-  // The checkpoint whose displayed image each of targets->checkpoints holds (0: none this view).
-  std::array<int, progressive::kKeptCheckpoints> checkpointFrames{};
-  std::optional<passes::FullscreenPass> tileMaskPass;  // made on first use
-  // The frame's stencil marks tiles this view no longer shades (skipTiles): the image units
-  // (lighting, compose, accumulation) test it. Cleared by frame 1.
-  bool tilesSkipped = false;
-  std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
-  Bounds probeBox;                            // the scene file's, else the scene's bounds
-  glm::ivec3 probeCounts{0};                  // the scene file's (0: from the density)
-  std::unique_ptr<GpuScene> scene;
-  // Some surface of the scene faces another (scene/self_visibility.h): without, the probe
-  // volume and the occlusion rays are skipped, as they could only give what is there without.
-  bool seesItself = true;
-  std::vector<Light> lights;  // the scene's, then the environment's sun if it has one
-  std::vector<Light> sceneLights;
-  std::optional<ibl::Sun> sun;  // as stored with the environment (unrotated, unscaled)
-  ibl::SkyDistribution sky;     // the environment without its sun, for sky shadows
-  Light skySample;              // this frame's sky-shadow sample (punctual draws point to it)
-  std::unique_ptr<GpuEnvironment> environment;
-  std::unique_ptr<GpuEnvironment> skybox;  // the view's background (setSkybox); null: environment
-  Camera camera;
-  bool hasCamera = false;
   // The per-view caches' counters (the prepass, the probe volume's and the area lights' caches),
   // advanced by the frame planner (progressive/frame_planner.h).
   progressive::CacheState caches;
   FrameStats stats;
-  float environmentMean = 0.0f;  // mean radiance of the environment (before intensity)
   std::chrono::steady_clock::time_point passStart;
 
   // With profilePasses, finishes the GL work queued since the last call and adds its time.
@@ -103,35 +61,10 @@ struct Renderer::Impl : progressive::FrameRenderer {
     passStart = now;
   }
 
-  // The radiance the display shows: the mean after the post effects (passes/effect_chain.h).
-  // Runs them (into their own targets): call before binding the display's framebuffer.
-  Result<const gl::Texture2D*> displayedRadiance() {
-    const auto& mean = targets->accumulation[static_cast<size_t>(targets->current)].color;
-    return effects.run(library, mean, targets->width, targets->height, settings,
-                       caps.colorBufferHalfFloat);
+  Status drawDisplayed(const passes::EffectOutput& output) {
+    return GpuPasses::drawDisplayed(settings, output);
   }
-  // Exposure, tone mapping and sRGB of `radiance` into the bound framebuffer and viewport (the
-  // display target, or the canvas); `filtered`: the viewport is larger than the image, which is
-  // then interpolated between texels.
-  Status drawToneMapped(const gl::Texture2D& radiance, bool filtered = false) {
-    if (filtered && !tonemapFiltered) {
-      auto tm =
-          passes::FullscreenPass::create(library, "tonemap.frag", false, {{"PN_FILTERED", "1"}});
-      if (!tm) return tm.error();
-      tonemapFiltered.emplace(std::move(*tm));
-    }
-    const passes::FullscreenPass& pass = filtered ? *tonemapFiltered : *tonemap;
-    const gl::Program& p = pass.begin();
-    radiance.bind(0);
-    p.set("uRadiance", 0);
-    p.set("uExposureScale", std::exp2(settings.exposure));
-    p.set("uToneMapper", static_cast<int>(settings.toneMapper));
-    pass.draw();
-    // The mean read here is the target the next frame's fused lighting draws into: a browser's
-    // GL took every such draw for a feedback loop while it stayed bound (20 % slower frames).
-    gl::Texture2D::unbind(0);
-    return {};
-  }
+  Status ensureFrameResources() { return GpuPasses::ensureFrameResources(settings); }
 
   // First light (distributeSamples): where the environment alone would give frame 1 less than
   // half of the scene's light (progressive::environmentShare), frame 1 evaluates the scene's
@@ -148,29 +81,7 @@ struct Renderer::Impl : progressive::FrameRenderer {
   Status skipTiles(std::span<const uint8_t> mask) override;
 
   Status init() {
-    caps = gl::queryCapabilities(options.desktopGl, {.forceHalfFloat = options.forceHalfFloat});
-    PN_TRY(checkTextureUnits(caps.maxTextureUnits));
-    library.setCommonDefines(passes::commonDefines());
-    auto lit = passes::LightingPass::create(library);
-    if (!lit) return lit.error();
-    lighting.emplace(std::move(*lit));
-    auto pre = passes::Prepass::create(library);
-    if (!pre) return pre.error();
-    prepass.emplace(std::move(*pre));
-    auto acc = passes::AccumulatePass::create(library);
-    if (!acc) return acc.error();
-    accumulate.emplace(std::move(*acc));
-    auto occ = passes::OcclusionPass::create(library);
-    if (!occ) return occ.error();
-    occlusionPass.emplace(std::move(*occ));
-    auto tm = passes::FullscreenPass::create(library, "tonemap.frag");
-    if (!tm) return tm.error();
-    tonemap.emplace(std::move(*tm));
-    if (caps.colorBufferHalfFloat) {
-      auto pv = passes::ProbeVolume::create(library);
-      if (!pv) return pv.error();
-      probes.emplace(std::move(*pv));
-    }
+    PN_TRY(createPasses(options));
     environment = nullptr;
     auto env = GpuEnvironment::create(uniformEnvironment(glm::vec3(0.0f)));
     if (!env) return env.error();
@@ -213,36 +124,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return {};
   }
 
-  // The frame targets and the shadow maps are made when something first draws or reads them,
-  // not when settings change: a viewer sets its canvas's size and then a scene's settings before
-  // its first frame, and made at each step the 1280x720 defaults took the phone page's GPU
-  // memory at start-up to 116 MB (56 MB now). An allocation that fails is reported by the call
-  // that needed it.
-  Status ensureFrameResources() {
-    if (!targets) {
-      auto t = passes::RenderTargets::create(
-          settings.width, settings.height, caps.accumulationFormat,
-          // Half floats hold the prepass (view normal, linear depth) well enough for the
-          // occlusion march's 0.2 % depth tolerance, at half the bandwidth of its random reads.
-          caps.colorBufferHalfFloat ? gl::PixelFormat::RGBA16F : caps.accumulationFormat);
-      if (!t) return t.error();
-      targets.emplace(std::move(*t));
-    }
-    if (!shadows) {
-      auto sp = passes::ShadowPass::create(library, settings.progressive.shadowMapSize);
-      if (!sp) return sp.error();
-      shadows.emplace(std::move(*sp));
-    }
-    if (!pointShadows) {
-      // Cube maps: six faces each, so at most 1024 pixels a face (24 MB a light at 1024).
-      auto pp = passes::PointShadowPass::create(library,
-                                                std::min(settings.progressive.shadowMapSize, 1024));
-      if (!pp) return pp.error();
-      pointShadows.emplace(std::move(*pp));
-    }
-    return {};
-  }
-
   void setLights() {
     lights = sceneLights;
     if (sun) lights.push_back(render::sunLight(*sun, settings));
@@ -274,34 +155,6 @@ struct Renderer::Impl : progressive::FrameRenderer {
     return probes && probes->active() && settings.progressive.probeVolume && scene && seesItself;
   }
 
-  Camera activeCamera() const { return hasCamera ? camera : defaultCameraForBounds(); }
-  Camera defaultCameraForBounds() const {
-    Scene empty;
-    if (scene) empty.bounds = scene->bounds();
-    return defaultCamera(empty);
-  }
-
-  // An intermediate frame as a list of units of GL work, run in order. Unsplit (step()) they
-  // run in one go. Split into `tiles` horizontal bands (stepPart()), every pass over the image
-  // (prepass, lighting batches, accumulation) runs once per band under a scissor and each
-  // shadow map is a unit of its own; each unit is one part. Every pixel sees the same draws
-  // with the same inputs either way, so the image is the same: lighting reads the prepass
-  // (complete before any lighting unit) and the previous mean (accumulation writes the other
-  // target and swaps only after its last band), and a batch's shadow maps are drawn before its
-  // bands and only overwritten after them.
-  struct PendingFrame {
-    FramePlan plan;
-    CameraMatrices cm;
-    int tiles = 1;
-    // The part of the frame target drawn: the whole of it, or a preview's reduced part
-    // (ProgressiveSettings::previewScale).
-    bool preview = false;
-    bool fused = false;  // the lighting pass accumulates (LightingBatch::accumulateFrame)
-    int drawWidth = 0, drawHeight = 0;
-    std::vector<passes::LightingBatch> batches;
-    std::vector<std::function<Status()>> units;
-    size_t next = 0;
-  };
   PendingFrame pending;
   int frameTiles = 1;
 

@@ -46,11 +46,7 @@ Status Renderer::toneMap() {
   gl::StateGuard guard(impl_->options.preserveHostState);
   PN_TRY(impl_->ensureFrameResources());
   auto& t = *impl_->targets;
-  auto radiance = impl_->displayedRadiance();
-  if (!radiance) return radiance.error();
-  t.display.framebuffer.bind();
-  gl::setViewport(0, 0, t.width, t.height);
-  PN_TRY(impl_->drawToneMapped(**radiance));
+  PN_TRY(impl_->drawDisplayed({t.display.framebuffer.id(), 0, 0, t.width, t.height}));
   return gl::checkError("tone mapping");
 }
 
@@ -91,12 +87,8 @@ Status Renderer::present(const PresentTarget& target) {
   }
   gl::StateGuard guard(impl_->options.preserveHostState);
   PN_TRY(impl_->ensureFrameResources());
-  auto radiance = impl_->displayedRadiance();
-  if (!radiance) return radiance.error();
-  gl::Framebuffer::bindExternal(target.framebuffer);
-  gl::setViewport(target.x, target.y, target.width, target.height);
-  PN_TRY(impl_->drawToneMapped(
-      **radiance, target.width > impl_->targets->width || target.height > impl_->targets->height));
+  PN_TRY(impl_->drawDisplayed(
+      {target.framebuffer, target.x, target.y, target.width, target.height}));
   return gl::checkError("presenting to framebuffer " + std::to_string(target.framebuffer));
 }
 

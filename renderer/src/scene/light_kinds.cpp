@@ -1,5 +1,7 @@
 #include "scene/light_kinds.h"
 
+#include "penumbra/error.h"
+
 #include <array>
 
 namespace penumbra {
@@ -51,6 +53,30 @@ constexpr bool inOrder() {
 }
 static_assert(inOrder(), "kKinds is indexed by LightType");
 
+constexpr std::array<PunctualSampleKind, static_cast<size_t>(PunctualSample::Count)> kSamples = {{
+    {PunctualSample::Point, "point"},
+    {PunctualSample::Spot, "spot"},
+    {PunctualSample::Directional, "directional"},
+    {PunctualSample::Sun, "sun"},
+    {PunctualSample::SkyShadow, "sky-shadow"},
+}};
+
+constexpr bool samplesInOrder() {
+  for (size_t i = 0; i < kSamples.size(); ++i) {
+    if (static_cast<size_t>(kSamples[i].sample) != i) return false;
+  }
+  // A punctual light's shader code is its plain sample's.
+  for (const LightKind& k : kKinds) {
+    if (k.area) continue;
+    const PunctualSample plain = k.type == LightType::Point  ? PunctualSample::Point
+                                 : k.type == LightType::Spot ? PunctualSample::Spot
+                                                             : PunctualSample::Directional;
+    if (k.shaderCode != static_cast<int>(plain)) return false;
+  }
+  return true;
+}
+static_assert(samplesInOrder(), "kSamples is indexed by PunctualSample; lights' codes match");
+
 }  // namespace
 
 const LightKind& lightKind(LightType type) {
@@ -59,6 +85,18 @@ const LightKind& lightKind(LightType type) {
 
 std::span<const LightKind> lightKinds() {
   return kKinds;
+}
+
+std::span<const PunctualSampleKind> punctualSampleKinds() {
+  return kSamples;
+}
+
+PunctualSample punctualSample(const Light& light, bool sun, bool skyShadow) {
+  if (skyShadow) return PunctualSample::SkyShadow;
+  const LightKind& k = lightKind(light.type);
+  PN_CHECK(!k.area, "punctualSample: a punctual light");
+  const auto plain = static_cast<PunctualSample>(k.shaderCode);
+  return plain == PunctualSample::Directional && sun ? PunctualSample::Sun : plain;
 }
 
 const LightKind* lightKindNamed(std::string_view name, bool area) {

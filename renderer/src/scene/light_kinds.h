@@ -30,9 +30,9 @@ struct LightKind {
   // position (a directional light spreads over its angular size: Disk).
   progressive::LightShape samples;
   ShadowProjection shadow;
-  // What the lighting shader receives: area lights the shape code in uAreaShape.z, punctual
-  // lights the type code in uPunctualPos.w (glsl/chunks/area_lights.glsl, punctual_term.glsl;
-  // both from lightDefines()).
+  // What the lighting shader receives: area lights the shape code in uAreaShape.z
+  // (glsl/chunks/area_lights.glsl, PN_LIGHT_<NAME>); punctual lights their plain sample's
+  // PunctualSample code (below), which a sample's kind may refine (a sun, a sky shadow).
   int shaderCode;
   // The emitting area (area lights; 0 for the others).
   float (*surfaceArea)(const Light& l);
@@ -42,6 +42,30 @@ struct LightKind {
 
 const LightKind& lightKind(LightType type);
 std::span<const LightKind> lightKinds();
+
+// The kinds of punctual sample the lighting shader tells apart, one table: a
+// KHR_lights_punctual light's own (point, spot, directional), a directional light with an
+// angular size (a sun: a disk of directions) and a sky-shadow sample (a direction drawn from
+// the environment, shadowed, correcting its diffuse term). A sample's code is its row
+// (uPunctualPos.w; PN_SAMPLE_<NAME> in the shaders) and a batch compiles only the kinds it has
+// (PN_PUNCTUAL_KINDS, a bit 1 << code each: PN_KIND_<NAME>). The sample's kind alone says what
+// its other uniforms mean: no value of theirs doubles as a code.
+enum class PunctualSample : int { Point, Spot, Directional, Sun, SkyShadow, Count };
+
+struct PunctualSampleKind {
+  PunctualSample sample;
+  const char* name;  // for the defines: "sky-shadow" -> PN_SAMPLE_SKY_SHADOW
+};
+
+std::span<const PunctualSampleKind> punctualSampleKinds();
+inline constexpr uint32_t sampleBit(PunctualSample s) {
+  return 1u << static_cast<int>(s);
+}
+// Every kind's bit: the widest PN_PUNCTUAL_KINDS.
+inline constexpr uint32_t kAllPunctualSamples = (1u << static_cast<int>(PunctualSample::Count)) - 1;
+// The sample a punctual light's draw is: its plain one, a sun where a directional light has an
+// angular size (`sun`), a sky shadow where the draw is one (`skyShadow`).
+PunctualSample punctualSample(const Light& light, bool sun, bool skyShadow);
 // The kind named `name` in EXT_lights_area (area) or KHR_lights_punctual; null if none.
 const LightKind* lightKindNamed(std::string_view name, bool area);
 

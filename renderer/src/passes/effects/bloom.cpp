@@ -20,7 +20,8 @@ class Bloom final : public Effect {
   const char* name() const override { return "bloom"; }
   bool enabled(const RenderSettings& settings) const override { return settings.bloom > 0.0f; }
 
-  Status apply(gl::ShaderLibrary& library, const EffectInput& in, const ColorTarget& out) override {
+  Status apply(gl::ShaderLibrary& library, const EffectInput& in,
+               const EffectOutput& out) override {
     PN_TRY(ensure(library, in.width, in.height));
     const int n = static_cast<int>(levels_.size());
     // Down: the radiance into level 0, then each level into the next.
@@ -32,18 +33,15 @@ class Bloom final : public Effect {
            true);
     }
     // Composite at full size.
-    out.framebuffer.bind();
-    gl::setViewport(0, 0, in.width, in.height);
+    out.bind();
     const gl::Program& p = stages_[3]->begin();
-    in.radiance->bind(0);
-    levels_[0].color.bind(1);
-    p.set("uSource", 0);
-    p.set("uBloom", 1);
+    p.bind("uSource", *in.radiance);
+    p.bind("uBloom", levels_[0].color);
     p.set("uStrength", std::clamp(in.settings->bloom, 0.0f, 1.0f));
     p.set("uLevels", static_cast<float>(n));
     stages_[3]->draw();
-    gl::Texture2D::unbind(0);
-    gl::Texture2D::unbind(1);
+    p.release("uSource");
+    p.release("uBloom");
     return {};
   }
 
@@ -88,16 +86,12 @@ class Bloom final : public Effect {
                  .blend = gl::Blend::Additive,
                  .cull = gl::Cull::None});
     }
-    source.bind(0);
-    p.set("uSource", 0);
+    p.bind("uSource", source);
     p.set("uTexel", glm::vec2(1.0f / static_cast<float>(source.width()),
                               1.0f / static_cast<float>(source.height())));
-    if (bloom) {
-      bloom->bind(1);
-      p.set("uBloom", 1);
-    }
+    if (bloom) p.bind("uBloom", *bloom);
     stages_[static_cast<size_t>(stage)]->draw();
-    gl::Texture2D::unbind(0);
+    p.release("uSource");
   }
 };
 

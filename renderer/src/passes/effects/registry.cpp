@@ -1,10 +1,11 @@
-// The post effects, in the order they run on the mean before tone mapping
-// (passes/effect_chain.h). Registering an effect is one line in PN_EFFECTS: the name of its
-// factory, defined in its file in passes/effects/.
+// The post effects, in the order they run on the mean (passes/effect_chain.h). Registering an
+// effect is one line in PN_EFFECTS: the name of its factory, defined in its file in
+// passes/effects/. Tone mapping stays last: the chain's last member writes the output.
 #include "passes/effect_chain.h"
 
 #define PN_EFFECTS(X) \
   X(makeBloom)        \
+  X(makeToneMap)      \
   /* end */
 
 namespace penumbra::passes {
