@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Files a reader can hold (issue #61): no shader over 250 lines (one program per output, sharing
-# chunks: glsl/chunks/lighting_common.glsl), no C++ source or header and no web module over 600.
+# chunks: glsl/chunks/lighting_common.glsl), no C++ source or header and no web module over 600,
+# no document over 600 (docs/, split by topic as docs/web/ is).
 # Usage: file_lengths.sh <dir of libpenumbra.a> <build dir> (both unused)
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -27,4 +28,5 @@ check 250 "shader files" "$ROOT/glsl" \( -name '*.glsl' -o -name '*.frag' -o -na
 check 600 "C++ files" "$ROOT/renderer" "$ROOT/tools" "$ROOT/web/src" "$ROOT/tests" \
   \( -name '*.cpp' -o -name '*.h' \)
 check 599 "web modules" "$ROOT/web/lib" -maxdepth 1 -name '*.mjs'
+check 600 "documents" "$ROOT/docs" "$ROOT/README.md" "$ROOT/CHANGELOG.md" -name '*.md'
 exit $status
