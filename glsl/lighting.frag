@@ -27,12 +27,13 @@ void shade() {
   Layers L = surfaceLayers(s, v);
   vec3 color = surfaceLight(L, s.occlusion) + s.emissive * uEnvWeight;
   // Alpha marks what screen-space indirect light may reuse: an area light's visible face is
-  // excluded (its light is already counted by the analytic area light), and extra light batches
-  // add nothing. Alpha-blended BLEND surfaces (frame 1) put their coverage there for the blend
-  // instead.
+  // excluded (its light is already counted by the analytic area light; uLampFaceAlpha), and
+  // extra light batches add nothing. Alpha-blended BLEND surfaces (frame 1) put their coverage
+  // there for the blend instead.
   float reusable =
-      uIndirectEmission > 0.5 || max(s.emissive.r, max(s.emissive.g, s.emissive.b)) <= 0.0 ? 1.0
-                                                                                           : 0.0;
+      uIndirectEmission > 0.5 || max(s.emissive.r, max(s.emissive.g, s.emissive.b)) <= 0.0
+          ? 1.0
+          : uLampFaceAlpha;
   bool blended = uAlphaMode == 2 && uCoverageFrame < 0;
   fragColor = vec4(color, uEnvWeight * (blended ? s.baseColor.a : reusable));
 }

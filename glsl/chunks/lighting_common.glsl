@@ -41,6 +41,10 @@ uniform float uEnvWeight;  // weight of the environment term in this frame (0 or
 // 1 where the surface's emission lights other surfaces (probe captures, screen-space indirect
 // light); 0 on an area light's visible face, whose light the analytic area light already gives.
 uniform float uIndirectEmission;
+// A lamp's face's alpha in the frame: 0 (screen-space indirect light does not reuse it), or 1
+// with a transparent background, where alpha is the scene's coverage (a lamp's face is
+// opaque then, and reused).
+uniform float uLampFaceAlpha;
 
 #if PN_OCCLUSION
 // This frame's diffuse occlusion rays, traced at a quarter of the pixels (occlusion_trace.frag):

@@ -51,8 +51,9 @@ void main() {
   up += tap(vec2(-1.0, -1.0)) + tap(vec2(1.0, -1.0)) + tap(vec2(-1.0, 1.0)) + tap(vec2(1.0, 1.0));
   fragColor = vec4(up / 16.0, 1.0);
 #else
-  vec3 radiance = texelFetch(uSource, ivec2(gl_FragCoord.xy), 0).rgb;
+  vec4 source = texelFetch(uSource, ivec2(gl_FragCoord.xy), 0);
   vec3 bloom = texture(uBloom, vUv).rgb / uLevels;
-  fragColor = vec4(mix(radiance, bloom, uStrength), 1.0);
+  // Alpha passes through: the scene's coverage with a transparent background.
+  fragColor = vec4(mix(source.rgb, bloom, uStrength), source.a);
 #endif
 }

@@ -66,6 +66,8 @@ export interface Settings {
    *  shadow-casting light; -1 automatic (default), 0 off. Applies when an environment loads. */
   sunThreshold?: number;
   showBackground?: boolean;
+  /** The page shows through where the scene is not (the canvas's alpha is its coverage). */
+  transparentBackground?: boolean;
   /** 0 = sharp, 1 = the roughest prefiltered mip. */
   backgroundBlur?: number;
   /** Milliseconds per animation frame spent on intermediate frames (default 12). */

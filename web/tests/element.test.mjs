@@ -15,7 +15,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { closeServer, dist, launch, outDir, recordConsole, root, serve,
+import { closeServer, dist, launch, outDir, pixels, recordConsole, root, serve,
          withTimeout } from './harness.mjs';
 
 const WAIT_MS = 90_000;   // SwiftShader on 2 shared cores: a module start and 8 frames take 3-20 s
@@ -548,6 +548,51 @@ test('skybox-image changes the background and not the lighting; alone it lights 
     await waitConverged(pg, '#both', 2);
     const restored = await shot(pg, '#both');
     assert.ok(skyBand(env, restored) < 0.01, 'removing skybox-image shows the environment again');
+  });
+});
+
+test('transparent-background: the page (a CSS colour here) shows where the model is not, as model-viewer\'s canvas', { timeout: TEST_MS }, async () => {
+  await withTestPage('transparent', async (pg) => {
+    const common = `class="small" src="${GRID}" frames="4" adaptive-resolution="false"
+      environment-image="assets/env/studio_sky.hdr" style="background: rgb(255, 0, 255)"`;
+    await pg.evaluate((c) => {
+      window.add(`<penumbra-viewer id="clear" ${c} transparent-background></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="drawn" ${c}></penumbra-viewer>`);
+    }, common);
+    for (const id of ['#clear', '#drawn']) await waitConverged(pg, id, 1);
+    // What the page shows: a screenshot of each element, decoded in the page.
+    const onPage = async (id) => {
+      const box = await pg.evaluate((s) => {
+        const r = document.querySelector(s).getBoundingClientRect();
+        return { x: r.x, y: r.y, width: r.width, height: r.height };
+      }, id);
+      const png = await pg.screenshot({ clip: box });
+      return pixels(pg, `data:image/png;base64,${png.toString('base64')}`);
+    };
+    const [clear, drawn] = [await onPage('#clear'), await onPage('#drawn')];
+    // The share of magenta pixels in the top fifth (the sky above the grid) and at the centre.
+    const magenta = (img, y0, y1, x0 = 0, x1 = img.width) => {
+      let n = 0, m = 0;
+      for (let y = y0; y < y1; y++) {
+        for (let x = x0; x < x1; x++, n++) {
+          const i = (y * img.width + x) * 4;
+          if (img.data[i] > 235 && img.data[i + 1] < 25 && img.data[i + 2] > 235) m++;
+        }
+      }
+      return m / n;
+    };
+    const h = clear.height, w = clear.width;
+    const figures = { clearTop: magenta(clear, 0, Math.round(h / 5)), drawnTop: magenta(drawn, 0, Math.round(h / 5)),
+                      clearCentre: magenta(clear, h / 2 - 3, h / 2 + 3, w / 2 - 3, w / 2 + 3) };
+    console.log(`# transparent: ${JSON.stringify(figures)}`);
+    assert.ok(figures.clearTop > 0.6, `the page shows through above the model: ${JSON.stringify(figures)}`);
+    assert.equal(figures.drawnTop, 0, `without the attribute the environment is drawn: ${JSON.stringify(figures)}`);
+    assert.equal(figures.clearCentre, 0, `the model covers the page: ${JSON.stringify(figures)}`);
+    // The canvas itself: alpha 0 in the corner, 255 at the centre.
+    const canvas = await shot(pg, '#clear');
+    const alpha = (x, y) => canvas.data[(y * canvas.width + x) * 4 + 3];
+    assert.equal(alpha(1, 1), 0, 'a transparent corner');
+    assert.equal(alpha(canvas.width >> 1, canvas.height >> 1), 255, 'an opaque model');
   });
 });
 

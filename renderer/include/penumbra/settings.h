@@ -104,6 +104,10 @@ struct RenderSettings {
   float sunThreshold = -1.0f;
   bool showBackground = true;
   float backgroundBlur = 0.0f;  // 0 = sharp, 1 = the roughest prefiltered mip
+  // The pixels the scene leaves are transparent instead (no background drawn): the displayed
+  // image's alpha is the scene's coverage, converging at its edges like every other term (a
+  // PNG with alpha; a page shows through the browser's canvas).
+  bool transparentBackground = false;
   ProgressiveSettings progressive;
   bool operator==(const RenderSettings&) const = default;
 };

@@ -88,6 +88,11 @@ const SettingInfo kSchema[] = {
     {"backgroundBlur", "background", "blur", "--background-blur", SettingType::Float, 0, 1, false,
      false, false, true, "background blur: 0 sharp, 1 the roughest prefiltered mip",
      PN_FIELD(backgroundBlur, float)},
+    {"transparentBackground", "background", "transparent", "--transparent", SettingType::Bool, 0,
+     1, false, false, false, true,
+     "leave the pixels the scene does not cover transparent: the image's alpha is the scene's "
+     "coverage (PNG), a page shows through the browser's canvas",
+     PN_BOOL(transparentBackground)},
     {"frames", "progressive", "frames", "--frames", SettingType::Int, 0, 4096, false, false, false,
      true,
      "intermediate frames m, or auto (the default): until the displayed image is measured "

@@ -25,6 +25,11 @@ glm::ivec2 drawnSize(const LightingBatch& b) {
                          : glm::ivec2(b.targets->width, b.targets->height);
 }
 
+// The environment is drawn behind the scene (not with a transparent background).
+bool backgroundShown(const LightingBatch& b) {
+  return b.settings->showBackground && !b.settings->transparentBackground;
+}
+
 // tan(angular radius) of a directional light's disk (0: a point at infinity, or not
 // directional).
 float directionalDisk(const Light& l, const RenderSettings& s) {
@@ -198,6 +203,7 @@ void LightingPass::setViewUniforms(const gl::Program& p, const LightingBatch& b,
   b.shadows->bind(p);
   b.pointShadows->bind(p);
   p.set("uEnvWeight", b.first ? 1.0f : 0.0f);
+  p.set("uLampFaceAlpha", b.settings->transparentBackground ? 1.0f : 0.0f);
   p.set("uCoverageFrame", b.coverageFrame);
   p.set("uCoverageStream", 0);
   p.bind("uProbeAtlas", dummy_);  // (an inactive volume binds none)
@@ -317,8 +323,9 @@ Status LightingPass::drawBackground(const LightingBatch& b, const GpuEnvironment
   bg.set("uBackgroundBlur", blur);
   bg.set("uBackgroundAlpha", alpha);
   if (b.accumulateFrame > 0) {
-    // Where no background is shown the sample is the clear colour, (0, 0, 0, 1).
-    bg.set("uBackgroundScale", b.settings->showBackground ? 1.0f : 0.0f);
+    // Where no background is shown the sample is the clear colour: (0, 0, 0, 1), or
+    // (0, 0, 0, 0) with a transparent background (`alpha` 0).
+    bg.set("uBackgroundScale", backgroundShown(b) ? 1.0f : 0.0f);
     setAccumulation(bg, b);
   }
   pass.draw();
@@ -327,9 +334,10 @@ Status LightingPass::drawBackground(const LightingBatch& b, const GpuEnvironment
 
 Status LightingPass::drawBackground(const LightingBatch& b, const glm::mat3& envRotation) {
   // Accumulating, the pixels the scene leaves are drawn whether or not a background is shown.
-  if (b.settings->showBackground || b.accumulateFrame > 0) {
+  if (backgroundShown(b) || b.accumulateFrame > 0) {
     return drawBackground(b, b.background ? *b.background : *b.environment, envRotation,
-                          *b.camera, b.settings->backgroundBlur, 1.0f);
+                          *b.camera, b.settings->backgroundBlur,
+                          b.settings->transparentBackground ? 0.0f : 1.0f);
   }
   return {};
 }
@@ -510,8 +518,11 @@ Status LightingPass::draw(const LightingBatch& b) {
     // A reduced frame clears only its part (unsplit: no band's scissor is on).
     const bool part = drawn != glm::ivec2(b.targets->width, b.targets->height);
     if (part) gl::setScissor(0, 0, drawn.x, drawn.y);
-    // (Accumulating, every pixel is drawn: by the scene or by the background.)
-    if (b.accumulateFrame == 0) gl::clearBufferFloat(0, 0, 0, 0, 1);
+    // (Accumulating, every pixel is drawn: by the scene or by the background.) Alpha is
+    // coverage with a transparent background.
+    if (b.accumulateFrame == 0) {
+      gl::clearBufferFloat(0, 0, 0, 0, b.settings->transparentBackground ? 0.0f : 1.0f);
+    }
     gl::clearDepth(1.0f);
     if (part) gl::disableScissor();
   }

@@ -53,7 +53,10 @@ Result<std::unique_ptr<GlContext>> createWebGlContext(const ContextOptions& opti
   emscripten_webgl_init_context_attributes(&attrs);
   attrs.majorVersion = 2;
   attrs.minorVersion = 0;
-  attrs.alpha = false;
+  // An alpha channel for RenderSettings::transparentBackground (the page shows through);
+  // tone mapping writes straight alpha, 1 where the background is drawn.
+  attrs.alpha = true;
+  attrs.premultipliedAlpha = false;
   attrs.depth = true;
   attrs.antialias = false;  // anti-aliasing comes from progressive sub-pixel jitter
   attrs.preserveDrawingBuffer = options.preserveDrawingBuffer;

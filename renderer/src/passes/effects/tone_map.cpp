@@ -33,6 +33,7 @@ class ToneMap final : public Effect {
     p.bind("uRadiance", *in.radiance);
     p.set("uExposureScale", std::exp2(in.settings->exposure));
     p.set("uToneMapper", static_cast<int>(in.settings->toneMapper));
+    p.set("uTransparent", in.settings->transparentBackground ? 1.0f : 0.0f);
     slot->draw();
     // The mean read here is the target the next frame's fused lighting draws into: a browser's
     // GL took every such draw for a feedback loop while it stayed bound (20 % slower frames).
