@@ -7,6 +7,11 @@ uniform mat4 uShadowMatrix[PN_MAX_SHADOW_MAPS];  // world -> shadow texture spac
 uniform vec4 uShadowParams[PN_MAX_SHADOW_MAPS];  // x: constant normal offset (world units), y: offset per
                                 // unit of distance from the light (about 1.5 texel angles)
 
+#ifdef PN_GROUND
+// ground.frag shades itself a second time without shadows: its reference.
+bool gUnshadowed = false;
+#endif
+
 float sampleShadowMap(int index, vec3 coord) {
   return texture(uShadowMaps, vec4(coord.xy, float(index), coord.z));
 }
@@ -25,6 +30,9 @@ uniform vec4 uPointShadowParams[PN_MAX_POINT_SHADOWS];  // near, far, offset, of
 #endif
 
 float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
+#ifdef PN_GROUND
+  if (gUnshadowed) return 1.0;
+#endif
   vec4 q = uPointShadowParams[index];
   vec3 light = uPointShadowPos[index].xyz;
   float dist = length(worldPos - light);
@@ -53,6 +61,9 @@ vec3 shadowNormal(vec3 toLight) {
 // chunks/punctual_term.glsl, only in the batches that have them: llvmpipe runs both sides of
 // a branch, and the two cube lookups would run for every shadow test.)
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
+#ifdef PN_GROUND
+  if (gUnshadowed) return 1.0;
+#endif
   if (index < 0) return 1.0;
   // Normal-offset bias grows with the texel footprint, which grows with distance.
   float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);
@@ -60,6 +71,11 @@ float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
   vec4 c = uShadowMatrix[index] * vec4(p, 1.0);
   if (c.w <= 0.0) return 1.0;  // behind the light sample: nothing there to block
   vec3 s = c.xyz / c.w;
+#ifdef PN_GROUND
+  // The ground lies outside the scene's bounds, which the maps are fitted to: a point beyond
+  // the far plane is behind whatever the map holds there (an empty texel keeps it lit).
+  s.z = min(s.z, 1.0);
+#endif
   if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
   return sampleShadowMap(index, s);
 }

@@ -278,20 +278,48 @@ def gltf_materials(g):
     return mats
 
 
-# Extension textures gltf_brdf.py rebuilds (from files beside a .gltf); the others, and these
-# inside a .glb, are left out of the reference.
+# Extension textures gltf_brdf.py rebuilds (from files beside a .gltf, or a .glb's images
+# written out by glb_images); the others are left out of the reference.
 REBUILT_TEXTURES = {"anisotropyTexture", "diffuseTransmissionTexture",
-                    "diffuseTransmissionColorTexture"}
+                    "diffuseTransmissionColorTexture", "clearcoatNormalTexture",
+                    "specularTexture", "specularColorTexture"}
+
+
+def glb_images(g, path, out_dir):
+    """A copy of a .glb's JSON whose images are files in out_dir (their bytes from the binary
+    chunk), so that gltf_brdf.py finds extension textures as it does beside a .gltf."""
+    import struct
+    with open(path, "rb") as f:
+        data = f.read()
+    clen = struct.unpack_from("<I", data, 12)[0]
+    start = 20 + clen
+    binary = data[start + 8:start + 8 + struct.unpack_from("<I", data, start)[0]] \
+        if len(data) > start + 8 else b""
+    g = dict(g)
+    images = []
+    for i, im in enumerate(g.get("images", [])):
+        im = dict(im)
+        view = g.get("bufferViews", [])[im["bufferView"]] if "bufferView" in im else None
+        ext = {"image/png": ".png", "image/jpeg": ".jpg"}.get(im.get("mimeType"))
+        # (Blender reads PNG and JPEG; a KTX2 image stays out, as beside a .gltf.)
+        if view is not None and "uri" not in im and ext is not None:
+            name = "image%d%s" % (i, ext)
+            off = view.get("byteOffset", 0)
+            with open(os.path.join(out_dir, name), "wb") as f:
+                f.write(binary[off:off + view["byteLength"]])
+            im["uri"] = name
+        images.append(im)
+    g["images"] = images
+    return g
 
 
 def reference_limits(g, path):
     """What of this file's materials the reference leaves out, in words."""
     left = set()
-    glb = path.lower().endswith(".glb")
     for m in g.get("materials", []):
         for ext in m.get("extensions", {}).values():
             for key in ext:
-                if key.endswith("Texture") and (glb or key not in REBUILT_TEXTURES):
+                if key.endswith("Texture") and key not in REBUILT_TEXTURES:
                     left.add(key)
     out = ["extension textures not in the reference: " + ", ".join(sorted(left))] if left else []
     # A morph target without NORMAL leaves the normals as they are (glTF, and Penumbra);
@@ -433,8 +461,12 @@ def render_model(job, m):
     clear_animation(g)
     res["other_scenes_removed"] = keep_default_scene(g)
     default_material()  # before use_gltf_brdf, which rebuilds it too
-    res["materials_rebuilt"] = use_gltf_brdf(gltf_materials(g), g,
-                                             os.path.dirname(os.path.abspath(m["file"])))
+    base_dir, with_images = os.path.dirname(os.path.abspath(m["file"])), g
+    if m["file"].lower().endswith(".glb"):
+        import tempfile
+        base_dir = tempfile.mkdtemp(prefix="fidelity_glb_")
+        with_images = glb_images(g, m["file"], base_dir)
+    res["materials_rebuilt"] = use_gltf_brdf(gltf_materials(g), with_images, base_dir)
     res["limits"] = reference_limits(g, m["file"])
     res["culled_materials"] = cull_back_faces()
     if job.get("multiscatter", True):

@@ -26,8 +26,14 @@ The material extensions are rebuilt from the glTF file's own values (use_gltf_br
                               glTF's rough thin-walled lobe, the reflection lobe mirrored through
                               the surface: a rough thin-walled material is rendered smooth, with
                               a warning)
-  KHR_materials_clearcoat     mix(material, GGX coat, clearcoat x Fresnel(1.5)) at the geometric
-                              normal
+  KHR_materials_clearcoat     mix(material, GGX coat, clearcoat x Fresnel(1.5)) at the coat's own
+                              normal map (clearcoatNormalTexture, a Normal Map node of its
+                              scale), else the geometric normal
+  KHR_materials_specular      the dielectric's Fresnel scaled by specularFactor (x the texture's
+                              .a) and its specular lobe tinted by specularColorFactor (x the
+                              texture's sRGB .rgb), capped at 1 / F0 so that the tinted F0 is
+                              glTF's min(F0 x colour, 1); glTF's F90 stays untinted, this one
+                              is tinted (a difference at grazing angles only)
   KHR_materials_sheen         a Velvet BSDF of the sheen colour and roughness added over the base,
                               which is scaled by 1 - max(sheenColor) x 0.25. Blender 3.4 has no
                               Charlie sheen (the Velvet lobe is Ashikhmin's): the sheen reference
@@ -173,6 +179,32 @@ def replace_principled(material, ext=None, textures=None):
         for node in (diffuse, spec, metal, fresnel):
             tree.links.new(normal, node.inputs["Normal"])
 
+    # KHR_materials_specular: how much of the Fresnel weight goes to the specular lobe, and its tint.
+    layer_weight = fresnel.outputs["Fac"]
+    specx = ext.get("KHR_materials_specular")
+    if specx is not None:
+        stex = _texture(tree, textures, specx.get("specularTexture"), False)
+        amount = _scaled(tree, float(specx.get("specularFactor", 1.0)),
+                         stex.outputs["Alpha"] if stex is not None else None)
+        layer_weight = _math(tree, "MULTIPLY", layer_weight, amount)
+        f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 if ior > 1.0 else 0.04
+        cap = 1.0 / max(f0, 1e-4)
+        colour = list(specx.get("specularColorFactor", [1.0, 1.0, 1.0]))
+        ctex = _texture(tree, textures, specx.get("specularColorTexture"), True)
+        if ctex is None:
+            spec.inputs["Color"].default_value = tuple(min(c, cap) for c in colour) + (1.0,)
+        else:
+            tint = N.new("ShaderNodeMixRGB")
+            tint.blend_type = "MULTIPLY"
+            tint.inputs["Fac"].default_value = 1.0
+            tint.inputs["Color1"].default_value = tuple(colour) + (1.0,)
+            tree.links.new(ctex.outputs["Color"], tint.inputs["Color2"])
+            capped = N.new("ShaderNodeVectorMath")
+            capped.operation = "MINIMUM"
+            tree.links.new(tint.outputs["Color"], capped.inputs[0])
+            capped.inputs[1].default_value = (cap, cap, cap)
+            tree.links.new(capped.outputs["Vector"], spec.inputs["Color"])
+
     aniso = ext.get("KHR_materials_anisotropy")
     if aniso is not None and float(aniso.get("anisotropyStrength", 0.0)) > 0.0:
         if float(aniso.get("anisotropyRotation", 0.0)) != 0.0:
@@ -280,7 +312,7 @@ def replace_principled(material, ext=None, textures=None):
             base = layered.outputs["Shader"]
 
     dielectric = N.new("ShaderNodeMixShader")
-    tree.links.new(fresnel.outputs["Fac"], dielectric.inputs["Fac"])
+    tree.links.new(layer_weight, dielectric.inputs["Fac"])
     tree.links.new(base, dielectric.inputs[1])
     tree.links.new(spec.outputs["BSDF"], dielectric.inputs[2])
 
@@ -296,8 +328,18 @@ def replace_principled(material, ext=None, textures=None):
         glossy.distribution = "GGX"
         glossy.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
         glossy.inputs["Roughness"].default_value = float(coat.get("clearcoatRoughnessFactor", 0.0))
-        coat_fresnel = N.new("ShaderNodeFresnel")  # the geometric normal: no normal map link
+        coat_fresnel = N.new("ShaderNodeFresnel")
         coat_fresnel.inputs["IOR"].default_value = 1.5
+        # The coat's own normal map; without one, the geometric normal (no link).
+        ntex = _texture(tree, textures, coat.get("clearcoatNormalTexture"), False)
+        if ntex is not None:
+            nmap = N.new("ShaderNodeNormalMap")
+            nmap.space = "TANGENT"
+            nmap.inputs["Strength"].default_value = float(
+                coat["clearcoatNormalTexture"].get("scale", 1.0))
+            tree.links.new(ntex.outputs["Color"], nmap.inputs["Color"])
+            for node in (glossy, coat_fresnel):
+                tree.links.new(nmap.outputs["Normal"], node.inputs["Normal"])
         coated = N.new("ShaderNodeMixShader")
         tree.links.new(_math(tree, "MULTIPLY", coat_fresnel.outputs["Fac"],
                              float(coat["clearcoatFactor"])), coated.inputs["Fac"])

@@ -35,7 +35,7 @@ export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
   autoplay: 'animations play only natively for now (penumbra-render --animation NAME --time T)',
   'animation-name': 'animations play only natively for now (penumbra-render --animation NAME --time T)',
   'animation-crossfade-duration': 'animations play only natively for now',
-  'shadow-intensity': 'there is no ground shadow yet', 'shadow-softness': 'there is no ground shadow yet',
+  'shadow-softness': 'the ground shadow is as soft as the environment\'s light makes it (shadow-intensity)',
   'skybox-height': 'the skybox is infinitely far (no ground projection)',
   'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',
   'min-field-of-view': 'the field of view has no limits', 'max-field-of-view': 'the field of view has no limits',

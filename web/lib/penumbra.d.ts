@@ -68,6 +68,8 @@ export interface Settings {
   showBackground?: boolean;
   /** The page shows through where the scene is not (the canvas's alpha is its coverage). */
   transparentBackground?: boolean;
+  /** A shadow-catching ground under the scene: 0 (off) to 1, model-viewer's shadow-intensity. */
+  shadowIntensity?: number;
   /** 0 = sharp, 1 = the roughest prefiltered mip. */
   backgroundBlur?: number;
   /** Milliseconds per animation frame spent on intermediate frames (default 12). */

@@ -23,6 +23,7 @@ const TEST_MS = 240_000;
 const CORNELL = 'assets/cornell_box/cornell_box.gltf';
 const GRID = 'assets/material_grid/material_grid.gltf';
 const VARIANTS = 'assets/material_grid/element_variants.gltf';  // written by before()
+const FLOATING = 'assets/material_grid/element_floating.gltf';  // the grid without its floor: before()
 
 // The test page: loads the element module and records every element's events on it.
 const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</title>
@@ -91,7 +92,13 @@ before(async () => {
   }
   const variants = join(outDir, 'element-variants.gltf');
   writeFileSync(variants, JSON.stringify(doc));
-  server = await serve(dist, { '/element.html': page, [`/${VARIANTS}`]: variants });
+  // The spheres alone, over nothing: what a ground shadow is for.
+  const grid = JSON.parse(readFileSync(join(root, GRID), 'utf8'));
+  const floor = grid.nodes.findIndex((n) => n.name === 'floor');
+  grid.scenes[grid.scene ?? 0].nodes = grid.scenes[grid.scene ?? 0].nodes.filter((i) => i !== floor);
+  const floating = join(outDir, 'element-floating.gltf');
+  writeFileSync(floating, JSON.stringify(grid));
+  server = await serve(dist, { '/element.html': page, [`/${VARIANTS}`]: variants, [`/${FLOATING}`]: floating });
   browser = await launch({ viewport: { width: 800, height: 600 } });
 }, { timeout: 60_000 });
 
@@ -434,7 +441,7 @@ test('auto-rotate turns the view once left alone and stops on a drag; model-view
     pg.on('console', (m) => { if (m.type() === 'warning') warnings.push(m.text()); });
     await pg.evaluate((src) => window.add(`<penumbra-viewer id="r" class="small" src="${src}" frames="8"
       adaptive-resolution="false" camera-controls auto-rotate auto-rotate-delay="0"
-      rotation-per-second="90deg" ar shadow-intensity="1"></penumbra-viewer>`), GRID);
+      rotation-per-second="90deg" ar shadow-softness="1"></penumbra-viewer>`), GRID);
     await pg.waitForFunction(() => document.querySelector('#r').loaded, null, { timeout: WAIT_MS });
     const yaw = () => pg.evaluate(() => {
       const c = document.querySelector('#r').viewer.camera;
@@ -470,12 +477,12 @@ test('auto-rotate turns the view once left alone and stops on a drag; model-view
     assert.ok(Math.abs(d - c) < 1e-6, `stopped after the drag (${Math.abs(d - c)})`);
     // Removing auto-rotate: the element converges and the loop sleeps.
     await pg.evaluate(() => document.querySelector('#r').removeAttribute('auto-rotate'));
-    // One warning each for ar and shadow-intensity, however many passes ran.
+    // One warning each for ar and shadow-softness, however many passes ran.
     await pg.evaluate(() => document.querySelector('#r').setAttribute('exposure', '1'));
     await pg.waitForTimeout(500);
     const mine = warnings.filter((w) => /is model-viewer's and not supported/.test(w));
     assert.equal(mine.filter((w) => w.includes('[penumbra-viewer] ar is')).length, 1, mine.join('\n'));
-    assert.equal(mine.filter((w) => w.includes('shadow-intensity')).length, 1, mine.join('\n'));
+    assert.equal(mine.filter((w) => w.includes('shadow-softness')).length, 1, mine.join('\n'));
     assert.equal(mine.length, 2, mine.join('\n'));
   });
 });
@@ -593,6 +600,47 @@ test('transparent-background: the page (a CSS colour here) shows where the model
     const alpha = (x, y) => canvas.data[(y * canvas.width + x) * 4 + 3];
     assert.equal(alpha(1, 1), 0, 'a transparent corner');
     assert.equal(alpha(canvas.width >> 1, canvas.height >> 1), 255, 'an opaque model');
+  });
+});
+
+test('shadow-intensity darkens the ground under the model and not the sky, converging; over the page with transparent-background', { timeout: TEST_MS }, async () => {
+  await withTestPage('ground-shadow', async (pg) => {
+    const common = `class="small" src="${FLOATING}" frames="16" adaptive-resolution="false"
+      camera-orbit="0deg 60deg auto" environment-image="assets/env/studio_sky.hdr"
+      transparent-background style="background: rgb(255, 255, 255)"`;
+    await pg.evaluate((c) => {
+      window.add(`<penumbra-viewer id="shadow" ${c} shadow-intensity="1"></penumbra-viewer>`);
+      window.add(`<penumbra-viewer id="none" ${c}></penumbra-viewer>`);
+    }, common);
+    for (const id of ['#shadow', '#none']) await waitConverged(pg, id, 1);
+    const onPage = async (id) => {
+      const box = await pg.evaluate((s) => {
+        const r = document.querySelector(s).getBoundingClientRect();
+        return { x: r.x, y: r.y, width: r.width, height: r.height };
+      }, id);
+      const png = await pg.screenshot({ clip: box });
+      return pixels(pg, `data:image/png;base64,${png.toString('base64')}`);
+    };
+    const [shadow, none] = [await onPage('#shadow'), await onPage('#none')];
+    // The mean brightness (0-255) of rows [y0, y1) across the middle half of the element.
+    const mean = (img, y0, y1) => {
+      let sum = 0, n = 0;
+      for (let y = Math.round(y0); y < Math.round(y1); y++) {
+        for (let x = Math.round(img.width / 4); x < Math.round(img.width * 3 / 4); x++, n++) {
+          const i = (y * img.width + x) * 4;
+          sum += (img.data[i] + img.data[i + 1] + img.data[i + 2]) / 3;
+        }
+      }
+      return sum / n;
+    };
+    const h = shadow.height;
+    // In front of the spheres' lowest row, seen from above (the bottom of the element).
+    const figures = { groundShadow: mean(shadow, h * 0.86, h), groundNone: mean(none, h * 0.86, h),
+                      skyShadow: mean(shadow, 0, h * 0.08), skyNone: mean(none, 0, h * 0.08) };
+    console.log(`# ground shadow: ${JSON.stringify(figures)}`);
+    assert.ok(figures.groundNone > 250, `without it the page shows under the model: ${JSON.stringify(figures)}`);
+    assert.ok(figures.groundShadow < figures.groundNone - 8, `the ground under the model darkens: ${JSON.stringify(figures)}`);
+    assert.ok(Math.abs(figures.skyShadow - figures.skyNone) < 0.5, `the sky above is untouched: ${JSON.stringify(figures)}`);
   });
 });
 

@@ -108,6 +108,11 @@ struct RenderSettings {
   // image's alpha is the scene's coverage, converging at its edges like every other term (a
   // PNG with alpha; a page shows through the browser's canvas).
   bool transparentBackground = false;
+  // A shadow-catching ground under the scene (model-viewer's shadow-intensity): the plane under
+  // the scene's bounds darkens what is behind it (the background, or the page with a
+  // transparent background) by this share of the light the scene takes from it: the
+  // environment's (sky-shadow samples: on with it) and the punctual lights'. 0 off.
+  float shadowIntensity = 0.0f;
   ProgressiveSettings progressive;
   bool operator==(const RenderSettings&) const = default;
 };

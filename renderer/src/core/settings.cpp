@@ -93,6 +93,11 @@ const SettingInfo kSchema[] = {
      "leave the pixels the scene does not cover transparent: the image's alpha is the scene's "
      "coverage (PNG), a page shows through the browser's canvas",
      PN_BOOL(transparentBackground)},
+    {"shadowIntensity", "ground", "shadowIntensity", "--shadow-intensity", SettingType::Float, 0,
+     1, false, false, false, true,
+     "a shadow-catching ground under the scene: the share of the light the scene takes from it "
+     "(the environment's and the punctual lights') that darkens what is behind it; 0 off",
+     PN_FIELD(shadowIntensity, float)},
     {"frames", "progressive", "frames", "--frames", SettingType::Int, 0, 4096, false, false, false,
      true,
      "intermediate frames m, or auto (the default): until the displayed image is measured "

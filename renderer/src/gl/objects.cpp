@@ -403,6 +403,11 @@ void apply(const PipelineState& s) {
       glBlendEquation(GL_FUNC_ADD);
       glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       break;
+    case Blend::Multiply:
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
+      break;
     case Blend::ConstantMix:
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);

@@ -140,7 +140,9 @@ class TimerQuery {
 // Fixed-function state of a pass, applied as a whole so passes never inherit stale state.
 // ConstantMix: dst = src w + dst (1 - w) with w = PipelineState::blendWeight (a running mean
 // written in place, one draw per weight).
-enum class Blend { None, Additive, Alpha, PremultipliedAlpha, ConstantMix };
+// Multiply: colour = source x destination, alpha = source + destination (a shadow catcher's
+// darkening, and its coverage over a transparent background).
+enum class Blend { None, Additive, Alpha, PremultipliedAlpha, ConstantMix, Multiply };
 enum class Cull { None, Back, Front };
 enum class DepthTest { Off, Less, LessEqual, Equal, Always };
 

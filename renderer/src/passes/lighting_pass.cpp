@@ -551,6 +551,7 @@ Status LightingPass::draw(const LightingBatch& b) {
   if (b.coverageFrame >= 0)
     PN_TRY(drawByMaterial(pass, *b.scene, b.scene->blended(), opaque, setup));
   if (b.first) PN_TRY(drawBackground(b, envRotation));
+  if (b.first && b.settings->shadowIntensity > 0.0f) PN_TRY(drawGround(b, envRotation));
   if (b.first && b.coverageFrame < 0 && !b.scene->blended().empty()) {
     PN_TRY(drawBlendedSorted(b, pass, setup));
   }

@@ -170,6 +170,8 @@ class LightingPass {
                            const std::function<void(const gl::Program&)>& setup);
   Status drawTransmissiveOwn(const LightingBatch& b, const glm::mat3& envRotation);
   Status drawBackground(const LightingBatch& b, const glm::mat3& envRotation);
+  // The shadow-catching ground over the first batch's background (passes/ground_shadow.cpp).
+  Status drawGround(const LightingBatch& b, const glm::mat3& envRotation);
   Status drawBackground(const LightingBatch& b, const GpuEnvironment& shown,
                         const glm::mat3& envRotation, const CameraMatrices& camera, float blur,
                         float alpha);
@@ -181,6 +183,8 @@ class LightingPass {
   // use (a blur is a setting few views have).
   std::array<std::optional<FullscreenPass>, 4> backgrounds_;
   gl::Texture2D dummy_;  // bound in place of the prepass when there is none
+  std::map<std::array<uint64_t, 2>, gl::Program*> groundPrograms_;  // by ProgramKey::key()
+  gl::VertexArray groundVao_;  // attribute-less: ground.vert makes the corners
 };
 
 }  // namespace penumbra::passes

@@ -19,8 +19,9 @@ progressive::FrameScene Renderer::Impl::frameScene(bool preview) const {
                          .finite = std::isfinite(l.intensity) && std::isfinite(l.color.r) &&
                                    std::isfinite(l.color.g) && std::isfinite(l.color.b)});
   }
-  fs.skyShadows = settings.progressive.skyShadows && scene && !sky.empty() &&
-                  environmentMean * settings.environmentIntensity > 0.0f;
+  // A ground shadow catches the environment's shadows through the sky-shadow samples.
+  fs.skyShadows = (settings.progressive.skyShadows || settings.shadowIntensity > 0.0f) && scene &&
+                  !sky.empty() && environmentMean * settings.environmentIntensity > 0.0f;
   fs.probes = probesOn();
   // Transmissive surfaces read the prepass's depth (the surface behind them) even when
   // nothing can occlude anything.
@@ -40,7 +41,9 @@ progressive::FrameScene Renderer::Impl::frameScene(bool preview) const {
 progressive::FrameLimits Renderer::Impl::frameLimits() const {
   return {.lightCache = options.lightCache,
           .probeCache = options.probeCache,
-          .fusedAccumulation = options.fusedAccumulation,
+          // The ground multiplies the frame's background (passes/ground_shadow.cpp): the
+          // frame then needs its own target, not the running mean.
+          .fusedAccumulation = options.fusedAccumulation && settings.shadowIntensity <= 0.0f,
           .shadowMaps = passes::kMaxShadowMaps,
           .punctualLights = passes::kMaxPunctualLights,
           .pointShadows = passes::kMaxPointShadows,
