@@ -1,12 +1,11 @@
 // The shadow-catching ground (RenderSettings::shadowIntensity; passes/ground_shadow.cpp): a
 // white Lambertian plane under the scene, which shows only what the scene takes from its light.
-// Each frame it shades itself twice with the batch's terms (chunks/lighting_common.glsl): as
-// lit, the environment's irradiance with this frame's sky-shadow sample and the punctual lights
-// with their shadows; and unshadowed (gUnshadowed). The environment's share is the same both
-// times, so the ratio's mean over frames is the visible share of the light. The frame behind
-// it (the background, or nothing with a transparent background) is multiplied by
-// 1 - intensity (1 - ratio) (gl::Blend::Multiply), and with a transparent background alpha
-// gets intensity (1 - ratio): a shadow over the page. Area lights are not caught (their
+// Each frame it shades itself with the batch's terms both as lit (the environment's irradiance
+// with this frame's sky-shadow sample, the punctual lights with their shadows) and unshadowed,
+// in luminance. The unshadowed light is the same every frame, so the ratio's mean over frames
+// is the visible share of the light. The frame behind it (the background, or nothing with a
+// transparent background) is multiplied by 1 - intensity (1 - ratio) (gl::Blend::Multiply),
+// and with a transparent background alpha gets intensity (1 - ratio): a shadow over the page. Area lights are not caught (their
 // batches do not draw the ground).
 #define PN_GROUND 1
 #include "chunks/lighting_common.glsl"
@@ -18,53 +17,69 @@ uniform float uTransparent;  // 1: the darkening is also the pixel's alpha (cove
 
 out vec4 fragColor;
 
-// A white Lambertian surface: no specular lobe, no coat, no sheen.
-Layers whiteLambert(vec3 n, vec3 v) {
-  Layers L;
-  L.n = n;
-  L.v = v;
-  L.NoV = max(dot(n, v), 1e-4);
-  L.diffuseColor = vec3(1.0);
-  L.f0 = vec3(0.0);
-  L.f90 = 0.0;
-  L.perceptualRoughness = 1.0;
-  L.alpha = 1.0;
-  L.specularScale = vec3(0.0);
-  L.energyComp = vec3(0.0);
-  L.coat = 0.0;
-  L.coatN = n;
-  L.coatNoV = L.NoV;
-  L.coatRoughness = 1.0;
-  L.coatAlpha = 1.0;
-  L.baseScale = 1.0;
-  L.sheenColor = vec3(0.0);
-  L.sheenMax = 0.0;
-  L.sheenA = 1.0;
-  L.sheenE = 0.0;
-  L.sheenScale = 1.0;
-  L.transmitColor = vec3(0.0);
-  L.backColor = vec3(0.0);
-  return L;
-}
-
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
-void main() {
-  Layers L = whiteLambert(vec3(0.0, 1.0, 0.0), viewDirection());
-  vec3 unoccluded = envIrradiance(L.n) * INV_PI;
-  vec3 lit = unoccluded, open = unoccluded;
 #if PN_PUNCTUAL
-  lit += punctualTerm(L, 1.0, 1.0);
-  gUnshadowed = true;
-  open += punctualTerm(L, 1.0, 1.0);
+// The punctual samples' light on the ground (normal up, white, Lambertian), as
+// chunks/punctual_term.glsl gives it, with and without their shadows in one pass over them.
+// A sky-shadow sample changes only `lit`: the environment's unoccluded term stands in `open`.
+void punctualGround(inout float lit, inout float open) {
+  vec3 n = vec3(0.0, 1.0, 0.0);
+  for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
+    int kind = int(uPunctualPos[i].w);
+    vec3 l = -uPunctualDir[i].xyz;
+    float attenuation = 1.0;
+#if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
+    if (kind == PN_SAMPLE_POINT || kind == PN_SAMPLE_SPOT) {
+      vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
+      float d2 = max(dot(toLight, toLight), 1e-8);
+      l = toLight * inversesqrt(d2);
+      attenuation = 1.0 / d2;
+      float range = uPunctualDir[i].w;
+      if (range > 0.0) {
+        float x = d2 / (range * range);
+        attenuation *= saturate(1.0 - x * x);
+      }
+      if (kind == PN_SAMPLE_SPOT) {
+        float a = saturate(dot(uPunctualDir[i].xyz, -l) * uPunctualCone[i].x + uPunctualCone[i].y);
+        attenuation *= a * a;
+      }
+    }
+#endif
+    float NoL = dot(n, l);
+    if (NoL <= 0.0) continue;
+    float e = luminance(uPunctualColor[i]) * attenuation * NoL * INV_PI;
+    float visibility;
+#if PN_POINT_SHADOWS
+    if (kind == PN_SAMPLE_POINT) {
+      visibility = uPunctualShadow[i] >= 0 ? pointShadowVisibility(uPunctualShadow[i], vWorldPos, n)
+                                           : 1.0;
+    } else
+#endif
+    visibility = shadowVisibility(uPunctualShadow[i], vWorldPos, n);
+    if (kind == PN_SAMPLE_SKY_SHADOW) {
+      lit += e * (visibility - 1.0);  // its colour is the sky's radiance over its density
+    } else {
+      lit += e * visibility;
+      open += e;
+    }
+  }
+}
+#endif
+
+void main() {
+  // The square's corners, past the fade: nothing to darken (a fifth of its area).
+  float r = length(vWorldPos.xz - uGroundCenter.xz) / uGroundHalf;
+  if (r >= 1.0) discard;
+  float open = luminance(envIrradiance(vec3(0.0, 1.0, 0.0))) * INV_PI, lit = open;
+#if PN_PUNCTUAL
+  punctualGround(lit, open);
 #endif
   // Not clamped: a sky-shadow sample's correction is an estimate, below -1 or above 0 in single
   // frames (its colour is the sky's radiance over its density); the mean is the share.
-  float reference = luminance(open);
-  float visible = reference > 0.0 ? luminance(lit) / reference : 1.0;
-  // The square is finite: its darkening fades out over its outer half (at its edge, twice the
-  // scene's size away, a body of that size takes about 1-2 % of a uniform sky's light).
-  float r = length(vWorldPos.xz - uGroundCenter.xz) / uGroundHalf;
+  float visible = open > 0.0 ? lit / open : 1.0;
+  // The square is finite: its darkening fades out over its outer half (at its edge, 1.5 times
+  // the scene's size away, a body of that size takes a few per cent of a uniform sky's light).
   float darkening = uShadowIntensity * (1.0 - visible) * (1.0 - smoothstep(0.5, 1.0, r));
   fragColor = vec4(vec3(1.0 - darkening), darkening * uTransparent);
 }

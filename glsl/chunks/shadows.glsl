@@ -7,11 +7,6 @@ uniform mat4 uShadowMatrix[PN_MAX_SHADOW_MAPS];  // world -> shadow texture spac
 uniform vec4 uShadowParams[PN_MAX_SHADOW_MAPS];  // x: constant normal offset (world units), y: offset per
                                 // unit of distance from the light (about 1.5 texel angles)
 
-#ifdef PN_GROUND
-// ground.frag shades itself a second time without shadows: its reference.
-bool gUnshadowed = false;
-#endif
-
 float sampleShadowMap(int index, vec3 coord) {
   return texture(uShadowMaps, vec4(coord.xy, float(index), coord.z));
 }
@@ -30,9 +25,6 @@ uniform vec4 uPointShadowParams[PN_MAX_POINT_SHADOWS];  // near, far, offset, of
 #endif
 
 float pointShadowVisibility(int index, vec3 worldPos, vec3 normal) {
-#ifdef PN_GROUND
-  if (gUnshadowed) return 1.0;
-#endif
   vec4 q = uPointShadowParams[index];
   vec3 light = uPointShadowPos[index].xyz;
   float dist = length(worldPos - light);
@@ -61,9 +53,6 @@ vec3 shadowNormal(vec3 toLight) {
 // chunks/punctual_term.glsl, only in the batches that have them: llvmpipe runs both sides of
 // a branch, and the two cube lookups would run for every shadow test.)
 float shadowVisibility(int index, vec3 worldPos, vec3 normal) {
-#ifdef PN_GROUND
-  if (gUnshadowed) return 1.0;
-#endif
   if (index < 0) return 1.0;
   // Normal-offset bias grows with the texel footprint, which grows with distance.
   float dist = max((uShadowMatrix[index] * vec4(worldPos, 1.0)).w, 0.0);

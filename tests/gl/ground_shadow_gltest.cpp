@@ -55,9 +55,9 @@ Shot render(float intensity, bool transparent, int frames) {
 }
 
 // The sphere's share of a uniform sky's irradiance at distance d from its foot, and the fade
-// over the square's outer half (its half side: twice the scene's largest side, 2).
+// over the square's outer half (its half side: 1.5 times the scene's largest side, 2).
 double hidden(double d) {
-  const double r = d / 4.0, t = std::clamp((r - 0.5) / 0.5, 0.0, 1.0);
+  const double r = d / 3.0, t = std::clamp((r - 0.5) / 0.5, 0.0, 1.0);
   return std::pow(d * d + 1.0, -1.5) * (1.0 - t * t * (3.0 - 2.0 * t));
 }
 

@@ -1,6 +1,6 @@
 // LightingPass::drawGround: the shadow-catching ground (RenderSettings::shadowIntensity,
 // model-viewer's shadow-intensity; glsl/ground.frag says how it shades). A square on the plane
-// under the scene's bounds, centred under them, reaching twice their largest side from the
+// under the scene's bounds, centred under them, reaching 1.5 times their largest side from the
 // centre (scene units from the scene itself), its darkening faded out over its outer half. Drawn after the first batch's opaque surfaces and its
 // background, depth-tested against the surfaces, it multiplies the frame behind it; it is not
 // in the scene's lists, so it casts no shadow, holds no depth, and neither the occlusion rays,
@@ -28,7 +28,7 @@ Status LightingPass::drawGround(const LightingBatch& b, const glm::mat3& envRota
   const glm::vec3 size = box.max - box.min;
   p->set("uGroundCenter", glm::vec3(0.5f * (box.min.x + box.max.x), box.min.y,
                                     0.5f * (box.min.z + box.max.z)));
-  p->set("uGroundHalf", 2.0f * std::max({size.x, size.y, size.z}));
+  p->set("uGroundHalf", 1.5f * std::max({size.x, size.y, size.z}));
   p->set("uShadowIntensity", std::clamp(b.settings->shadowIntensity, 0.0f, 1.0f));
   p->set("uTransparent", b.settings->transparentBackground ? 1.0f : 0.0f);
   gl::apply({.depthTest = gl::DepthTest::Less,
