@@ -84,6 +84,14 @@ vec3 diskSpecular(vec3 n, vec3 v, vec3 f0, float f90, float alpha, vec4 disk) {
   vec3 lr = normalize(centre + toRay * min(1.0, disk.w / max(length(toRay), 1e-6)));
   float widened = min(1.0, alpha + 0.5 * disk.w);
   float norm = (alpha / widened) * (alpha / widened);
+#if PN_ANISOTROPY
+  // An anisotropic lobe is widened along each of its axes: GGX's peak scales as
+  // 1 / (alpha_t alpha_b), so the renormalisation is the product of the two ratios (the
+  // isotropic alpha's square took most of a mirror's streak away: AnisotropyStrengthTest).
+  if (gAnisotropic) {
+    norm = (gAlphaT / min(1.0, gAlphaT + 0.5 * disk.w)) * (gAlphaB / min(1.0, gAlphaB + 0.5 * disk.w));
+  }
+#endif
   return specularBrdf(n, v, lr, f0, f90, alpha, norm) * max(dot(n, lr), 0.0);
 }
 
