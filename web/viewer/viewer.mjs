@@ -88,7 +88,7 @@ function renderProgress(viewer) {
 
 const form = $('panel');
 const numberFields = ['fd', 'occlusionDistance', 'indirectClamp', 'exposure', 'budgetMs',
-                      'resolutionScale', 'maxSplit', 'sunThreshold'];
+                      'resolutionScale', 'maxSplit', 'sunThreshold', 'shadowIntensity'];
 
 function fillPanel(settings) {
   for (const el of form.elements) {
@@ -100,6 +100,7 @@ function fillPanel(settings) {
     else el.value = String(settings[el.name]);
   }
   form.elements.fdOut.value = Number(settings.fd).toFixed(2);
+  form.elements.shadowIntensityOut.value = Number(settings.shadowIntensity).toFixed(1);
   form.elements.exposureOut.value = `${settings.exposure >= 0 ? '+' : ''}${Number(settings.exposure).toFixed(2)}`;
 }
 
