@@ -393,6 +393,13 @@ def write_report(a, results, skipped, frames, when):
     with open(os.path.join(a.out, "README.md"), "w") as f:
         f.write("\n".join(L) + "\n")
     print("evaluate: wrote %s" % os.path.join(a.out, "README.md"))
+    # The project README's "Where it stands" block, when these are the project's results.
+    readme = os.path.join(a.root, "README.md")
+    if os.path.abspath(a.out) == os.path.join(os.path.abspath(a.root), "docs", "evaluation"):
+        subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                     "readme_table.py"),
+                        "--results", os.path.join(a.out, "results.json"), "--readme", readme],
+                       check=True)
 
 
 def unit_check(a):
