@@ -139,6 +139,17 @@ async function waitConverged(pg, selector, count) {
 
 const shot = (pg, selector) => pg.evaluate((s) => window.shot(document.querySelector(s)), selector);
 
+// What the page shows where an element is (the page behind a transparent canvas included): a
+// screenshot of its box, decoded in the page.
+async function onPage(pg, selector) {
+  const box = await pg.evaluate((s) => {
+    const r = document.querySelector(s).getBoundingClientRect();
+    return { x: r.x, y: r.y, width: r.width, height: r.height };
+  }, selector);
+  const png = await pg.screenshot({ clip: box });
+  return pixels(pg, `data:image/png;base64,${png.toString('base64')}`);
+}
+
 // Mean |a - b| over R, G, B in [0, 1], and the mean of an image.
 function meanDiff(a, b) {
   assert.equal(a.data.length, b.data.length, 'same size');
@@ -567,16 +578,7 @@ test('transparent-background: the page (a CSS colour here) shows where the model
       window.add(`<penumbra-viewer id="drawn" ${c}></penumbra-viewer>`);
     }, common);
     for (const id of ['#clear', '#drawn']) await waitConverged(pg, id, 1);
-    // What the page shows: a screenshot of each element, decoded in the page.
-    const onPage = async (id) => {
-      const box = await pg.evaluate((s) => {
-        const r = document.querySelector(s).getBoundingClientRect();
-        return { x: r.x, y: r.y, width: r.width, height: r.height };
-      }, id);
-      const png = await pg.screenshot({ clip: box });
-      return pixels(pg, `data:image/png;base64,${png.toString('base64')}`);
-    };
-    const [clear, drawn] = [await onPage('#clear'), await onPage('#drawn')];
+    const [clear, drawn] = [await onPage(pg, '#clear'), await onPage(pg, '#drawn')];
     // The share of magenta pixels in the top fifth (the sky above the grid) and at the centre.
     const magenta = (img, y0, y1, x0 = 0, x1 = img.width) => {
       let n = 0, m = 0;
@@ -613,15 +615,7 @@ test('shadow-intensity darkens the ground under the model and not the sky, conve
       window.add(`<penumbra-viewer id="none" ${c}></penumbra-viewer>`);
     }, common);
     for (const id of ['#shadow', '#none']) await waitConverged(pg, id, 1);
-    const onPage = async (id) => {
-      const box = await pg.evaluate((s) => {
-        const r = document.querySelector(s).getBoundingClientRect();
-        return { x: r.x, y: r.y, width: r.width, height: r.height };
-      }, id);
-      const png = await pg.screenshot({ clip: box });
-      return pixels(pg, `data:image/png;base64,${png.toString('base64')}`);
-    };
-    const [shadow, none] = [await onPage('#shadow'), await onPage('#none')];
+    const [shadow, none] = [await onPage(pg, '#shadow'), await onPage(pg, '#none')];
     // The mean brightness (0-255) of rows [y0, y1) across the middle half of the element.
     const mean = (img, y0, y1) => {
       let sum = 0, n = 0;
