@@ -148,6 +148,15 @@ class LampLayer {
   }
 }
 
+// The path tracer's background for Penumbra's settings: none with a transparent background
+// (the path tracer then writes alpha 0 there and the page shows through, as through Penumbra's
+// canvas), the environment where it is shown, else black.
+export function backgroundFor(settings, texture) {
+  if (settings.transparentBackground === true) return null;
+  if (texture && settings.showBackground !== false) return texture;
+  return new THREE.Color(0, 0, 0);
+}
+
 export class PathTracerView {
   renderer; pathTracer; scene; camera; compileMs = null; lights = 0; parallelCompile = false;
   autoTiles = true;
@@ -157,7 +166,9 @@ export class PathTracerView {
   // {uniform: [r, g, b]} or {file: URL} (a 2:1 panorama). settings: Penumbra's (viewer.settings).
   static async create(canvas, { gltfUrl, environment, settings, bounces = 8, tiles = 0 }) {
     const v = new PathTracerView();
-    const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false,
+    // An alpha channel only for a transparent background (read when the path tracer starts).
+    const renderer = new THREE.WebGLRenderer({ canvas, antialias: false,
+                                               alpha: settings.transparentBackground === true,
                                                preserveDrawingBuffer: true });
     renderer.setPixelRatio(1);
     renderer.outputColorSpace = THREE.SRGBColorSpace;
@@ -203,13 +214,11 @@ export class PathTracerView {
     const rot = THREE.MathUtils.degToRad(settings.environmentRotation || 0);
     scene.environmentIntensity = settings.environmentIntensity ?? 1;
     scene.environmentRotation.set(0, rot, 0);
-    if (texture && settings.showBackground !== false) {
-      scene.background = texture;
+    scene.background = backgroundFor(settings, texture);
+    if (texture && scene.background === texture) {
       scene.backgroundIntensity = scene.environmentIntensity;
       scene.backgroundRotation.set(0, rot, 0);
       scene.backgroundBlurriness = settings.backgroundBlur || 0;
-    } else {
-      scene.background = new THREE.Color(0, 0, 0);
     }
   }
 

@@ -1,10 +1,10 @@
 // The hand-off page's mapping of EXT_lights_area to three-gpu-pathtracer's area lights
 // (web/handoff/pathtracer.mjs), in node with three.js alone: sizes, radiance, which side emits,
-// disks, lamp proxies; and the tone mappers.
+// disks, lamp proxies; the tone mappers; the background.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import * as THREE from 'three';
-import { TONE_MAPPERS, addAreaLights } from '../handoff/pathtracer.mjs';
+import { TONE_MAPPERS, addAreaLights, backgroundFor } from '../handoff/pathtracer.mjs';
 
 // A glTF as three's GLTFLoader hands it over: the JSON and the node objects.
 function fakeGltf(json) {
@@ -81,4 +81,15 @@ test('EXT_lights_area rect and disk lights become area lights of the same radian
 test('every Penumbra tone mapper has a three.js one; PBR Neutral is NeutralToneMapping', () => {
   assert.deepEqual(Object.keys(TONE_MAPPERS).sort(), ['aces', 'none', 'pbr-neutral', 'reinhard']);
   assert.equal(TONE_MAPPERS['pbr-neutral'], THREE.NeutralToneMapping);
+});
+
+test('the background: none over a transparent background, the environment where shown, else black', () => {
+  const env = new THREE.Texture();
+  assert.equal(backgroundFor({}, env), env);
+  assert.equal(backgroundFor({ showBackground: true, transparentBackground: false }, env), env);
+  assert.equal(backgroundFor({ transparentBackground: true }, env), null);
+  assert.equal(backgroundFor({ transparentBackground: true, showBackground: false }, null), null);
+  const black = backgroundFor({ showBackground: false }, env);
+  assert.ok(black.isColor && black.r === 0 && black.g === 0 && black.b === 0);
+  assert.ok(backgroundFor({}, null).isColor, 'no environment: black');
 });
