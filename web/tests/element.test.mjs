@@ -607,7 +607,7 @@ test('transparent-background: the page (a CSS colour here) shows where the model
 
 test('shadow-intensity darkens the ground under the model and not the sky, converging; over the page with transparent-background', { timeout: TEST_MS }, async () => {
   await withTestPage('ground-shadow', async (pg) => {
-    const common = `class="small" src="${FLOATING}" frames="16" adaptive-resolution="false"
+    const common = `class="small" src="${FLOATING}" frames="8" adaptive-resolution="false"
       camera-orbit="0deg 60deg auto" environment-image="assets/env/studio_sky.hdr"
       transparent-background style="background: rgb(255, 255, 255)"`;
     await pg.evaluate((c) => {
