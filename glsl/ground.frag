@@ -17,46 +17,20 @@ uniform float uTransparent;  // 1: the darkening is also the pixel's alpha (cove
 
 out vec4 fragColor;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
-
 #if PN_PUNCTUAL
-// The punctual samples' light on the ground (normal up, white, Lambertian), as
-// chunks/punctual_term.glsl gives it, with and without their shadows in one pass over them.
+// The punctual samples' light on the ground (normal up, white, Lambertian), with
+// chunks/punctual_term.glsl's incidence and shadows, lit and unshadowed in one pass over them.
 // A sky-shadow sample changes only `lit`: the environment's unoccluded term stands in `open`.
 void punctualGround(inout float lit, inout float open) {
   vec3 n = vec3(0.0, 1.0, 0.0);
   for (int i = 0; i < PN_PUNCTUAL_COUNT; ++i) {
     int kind = int(uPunctualPos[i].w);
-    vec3 l = -uPunctualDir[i].xyz;
-    float attenuation = 1.0;
-#if (PN_PUNCTUAL_KINDS & (PN_KIND_POINT | PN_KIND_SPOT)) != 0
-    if (kind == PN_SAMPLE_POINT || kind == PN_SAMPLE_SPOT) {
-      vec3 toLight = uPunctualPos[i].xyz - vWorldPos;
-      float d2 = max(dot(toLight, toLight), 1e-8);
-      l = toLight * inversesqrt(d2);
-      attenuation = 1.0 / d2;
-      float range = uPunctualDir[i].w;
-      if (range > 0.0) {
-        float x = d2 / (range * range);
-        attenuation *= saturate(1.0 - x * x);
-      }
-      if (kind == PN_SAMPLE_SPOT) {
-        float a = saturate(dot(uPunctualDir[i].xyz, -l) * uPunctualCone[i].x + uPunctualCone[i].y);
-        attenuation *= a * a;
-      }
-    }
-#endif
+    vec3 l;
+    float attenuation = punctualIncidence(i, kind, vWorldPos, l);
     float NoL = dot(n, l);
     if (NoL <= 0.0) continue;
     float e = luminance(uPunctualColor[i]) * attenuation * NoL * INV_PI;
-    float visibility;
-#if PN_POINT_SHADOWS
-    if (kind == PN_SAMPLE_POINT) {
-      visibility = uPunctualShadow[i] >= 0 ? pointShadowVisibility(uPunctualShadow[i], vWorldPos, n)
-                                           : 1.0;
-    } else
-#endif
-    visibility = shadowVisibility(uPunctualShadow[i], vWorldPos, n);
+    float visibility = punctualVisibility(i, kind, vWorldPos, n);
     if (kind == PN_SAMPLE_SKY_SHADOW) {
       lit += e * (visibility - 1.0);  // its colour is the sky's radiance over its density
     } else {

@@ -13,3 +13,5 @@ const float INV_PI = 0.31830988618379;
 
 float saturate(float x) { return clamp(x, 0.0, 1.0); }
 vec3 saturate(vec3 x) { return clamp(x, 0.0, 1.0); }
+// Rec. 709 luminance of linear RGB.
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }

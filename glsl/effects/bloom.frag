@@ -30,7 +30,7 @@ void main() {
     ivec2 p = min(base + ivec2(i & 1, i >> 1), size - 1);
     vec3 c = max(texelFetch(uSource, p, 0).rgb, vec3(0.0));
     // Non-finite samples never reach the mean; a huge one is tamed by the weight.
-    float w = 1.0 / (1.0 + dot(c, vec3(0.2126, 0.7152, 0.0722)));
+    float w = 1.0 / (1.0 + luminance(c));
     sum += c * w;
     weights += w;
   }

@@ -54,7 +54,6 @@ Capabilities queryCapabilities(bool desktopGl, const CapabilityOptions& options)
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &c.maxTextureSize);
   glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &c.maxCubeMapSize);
   glGetIntegerv(GL_MAX_DRAW_BUFFERS, &c.maxDrawBuffers);
-  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &c.maxTextureUnits);
   c.colorBufferFloat = renderable(PixelFormat::RGBA32F);
   c.colorBufferHalfFloat = renderable(PixelFormat::RGBA16F);
   // Desktop GL has these in core; ES and WebGL need the extensions.

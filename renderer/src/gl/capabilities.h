@@ -23,7 +23,6 @@ struct Capabilities {
   int maxTextureSize = 0;
   int maxCubeMapSize = 0;
   int maxDrawBuffers = 0;
-  int maxTextureUnits = 0;
 
   // Policy derived from the above.
   PixelFormat accumulationFormat = PixelFormat::RGBA8;

@@ -236,11 +236,6 @@ void Texture2D::bind(int unit) const {
   glBindTexture(GL_TEXTURE_2D, handle_.id());
 }
 
-void Texture2D::unbind(int unit) {
-  glActiveTexture(GL_TEXTURE0 + unit);
-  glBindTexture(GL_TEXTURE_2D, 0);
-}
-
 Result<Texture2DArray> Texture2DArray::create(const TextureDesc& desc, int layers) {
   PN_TRY(validate(desc, false));
   GLint maxLayers = 0;

@@ -69,9 +69,6 @@ class Texture2D {
   void generateMipmaps();
   void setSampler(const SamplerState& sampler);
   void bind(int unit) const;
-  // Leaves `unit` with no 2D texture: a pass that sampled a render target releases it, so that
-  // drawing into that target later is not taken for a feedback loop.
-  static void unbind(int unit);
 
   GLuint id() const { return handle_.id(); }
   int width() const { return desc_.width; }

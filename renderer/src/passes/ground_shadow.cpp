@@ -29,7 +29,7 @@ Status LightingPass::drawGround(const LightingBatch& b, const glm::mat3& envRota
   p->set("uGroundCenter", glm::vec3(0.5f * (box.min.x + box.max.x), box.min.y,
                                     0.5f * (box.min.z + box.max.z)));
   p->set("uGroundHalf", 1.5f * std::max({size.x, size.y, size.z}));
-  p->set("uShadowIntensity", std::clamp(b.settings->shadowIntensity, 0.0f, 1.0f));
+  p->set("uShadowIntensity", b.settings->shadowIntensity);  // (0..1: the settings schema)
   p->set("uTransparent", b.settings->transparentBackground ? 1.0f : 0.0f);
   gl::apply({.depthTest = gl::DepthTest::Less,
              .depthWrite = false,
