@@ -138,6 +138,12 @@ class Renderer {
   // environment itself again. It lights nothing. Restarts accumulation.
   Status setSkybox(const PackedEnvironment* skybox);
   void setCamera(const Camera& camera);
+  // Playback: poses a scene loaded with LoadOptions::playback at `time` seconds of animation
+  // `animation` (an index into Scene::animations; -1: the rest pose) on the GPU, its morph
+  // targets and skins once per pose (passes/deform_pass.h), and starts the view over: a playing
+  // animation shows each pose's first frame, a pose held converges as any still does. Lights
+  // and cameras keep their places.
+  Status setPose(int animation, float time);
   Status setSettings(const RenderSettings& settings);
 
   // Draws the next intermediate frame (the rest of it when stepPart() began it); returns its

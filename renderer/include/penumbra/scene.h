@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "penumbra/error.h"
 
 namespace penumbra {
+
+struct Rig;  // penumbra/animation.h
 
 struct Bounds {
   glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -199,6 +202,22 @@ struct TextureSlotInfo {
 };
 const TextureSlotInfo& textureSlotInfo(TextureSlot slot);
 
+// Playback (LoadOptions::playback): a morphed or skinned primitive as the file has it, before its
+// morph targets and skin, and what poses it (Renderer::setPose, on the GPU). Normals and
+// tangents the file lacks are generated from these positions as for the still.
+struct Deformation {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;
+  std::vector<glm::vec4> joints;   // JOINTS_0 as floats; empty: not skinned
+  std::vector<glm::vec4> weights;  // WEIGHTS_0
+  // Morph targets' displacements (an array is empty where the target does not move it).
+  struct Target {
+    std::vector<glm::vec3> positions, normals, tangents;
+  };
+  std::vector<Target> targets;
+};
+
 // One drawable primitive, de-indexed into separate attribute arrays. Optional arrays are
 // empty when absent (normals and, for normal-mapped materials, tangents are generated).
 struct Primitive {
@@ -214,6 +233,7 @@ struct Primitive {
   // does not map this primitive); empty when the scene has no variants.
   std::vector<int> variantMaterials;
   Bounds bounds;  // object space
+  std::shared_ptr<const Deformation> deformation;  // null: still (or loaded without playback)
 };
 
 struct Mesh {
@@ -302,6 +322,8 @@ struct Scene {
     float duration = 0.0f;
   };
   std::vector<Animation> animations;
+  // What poses the scene at any time of its animations (LoadOptions::playback; null without).
+  std::shared_ptr<const Rig> rig;
   size_t triangleCount() const;
 };
 
@@ -314,6 +336,9 @@ struct LoadOptions {
   // number; empty: the rest pose). Before its first key and after its last it holds its ends.
   std::string animation;
   float animationTime = 0.0f;
+  // Keep what plays the animations back (Scene::rig, Primitive::deformation) for a viewer
+  // that poses the scene over time; a still needs neither.
+  bool playback = false;
 };
 
 // Loads a .gltf (with external or embedded buffers and images) or .glb file.

@@ -47,6 +47,9 @@ inline void deleteBuffer(GLuint id) {
 inline void deleteVertexArray(GLuint id) {
   glDeleteVertexArrays(1, &id);
 }
+inline void deleteTransformFeedback(GLuint id) {
+  glDeleteTransformFeedbacks(1, &id);
+}
 inline void deleteFramebuffer(GLuint id) {
   glDeleteFramebuffers(1, &id);
 }

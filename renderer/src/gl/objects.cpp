@@ -15,6 +15,8 @@ GLenum bufferTarget(BufferKind k) {
       return GL_ELEMENT_ARRAY_BUFFER;
     case BufferKind::Uniform:
       return GL_UNIFORM_BUFFER;
+    case BufferKind::Feedback:
+      return GL_ARRAY_BUFFER;
   }
   return GL_ARRAY_BUFFER;
 }
@@ -76,7 +78,8 @@ Result<Buffer> Buffer::create(BufferKind kind, std::span<const uint8_t> data) {
   // Index buffers are bound through a VAO; binding one with no VAO bound is harmless in ES3.
   glBindBuffer(bufferTarget(kind), id);
   glBufferData(bufferTarget(kind), static_cast<GLsizeiptr>(data.size()),
-               data.empty() ? nullptr : data.data(), GL_STATIC_DRAW);
+               data.empty() ? nullptr : data.data(),
+               kind == BufferKind::Feedback ? GL_DYNAMIC_COPY : GL_STATIC_DRAW);
   if (kind == BufferKind::Index) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   PN_TRY(checkAllocation("allocating a " + std::to_string(data.size()) + "-byte buffer"));
   b.memory_ = MemoryCharge(static_cast<int64_t>(data.size()));
@@ -499,6 +502,36 @@ void finish() {
 }
 void flush() {
   glFlush();
+}
+
+TransformFeedback TransformFeedback::create() {
+  GLuint id = 0;
+  glGenTransformFeedbacks(1, &id);
+  TransformFeedback t;
+  t.handle_ = Handle<deleteTransformFeedback>(id);
+  return t;
+}
+
+void TransformFeedback::capture(const VertexArray& vao, int count,
+                                std::span<const Buffer* const> outputs) const {
+  // WebGL refuses a buffer bound for feedback and as an attribute of the bound VAO at once:
+  // `vao` reads other buffers, and the outputs are unbound again before anyone draws them.
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, handle_.id());
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLuint>(i), outputs[i]->id());
+  }
+  glEnable(GL_RASTERIZER_DISCARD);
+  vao.bind();
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, count);
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLuint>(i), 0);
+  }
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
 }
 
 }  // namespace penumbra::gl

@@ -16,7 +16,9 @@
 
 namespace penumbra::gl {
 
-enum class BufferKind { Vertex, Index, Uniform };
+// Feedback: vertex data that a transform feedback rewrites (a played pose's positions, normals
+// and tangents), read by draws like Vertex.
+enum class BufferKind { Vertex, Index, Uniform, Feedback };
 
 class Buffer {
  public:
@@ -70,6 +72,21 @@ class VertexArray {
   bool indexed_ = false;
   IndexType indexType_ = IndexType::UInt32;
   std::vector<std::pair<int, std::array<float, 4>>> constants_;
+};
+
+// A transform feedback object: captures a vertex shader's outputs (Program::build's `feedback`
+// varyings, one buffer each) into buffers, with rasterization off. Playback poses skinned and
+// morphed geometry once per pose this way, and every pass then draws the posed buffers.
+class TransformFeedback {
+ public:
+  TransformFeedback() = default;
+  static TransformFeedback create();
+  // Runs the program in use over vertices 0..count-1 of `vao` (as points), writing its feedback
+  // varyings, in order, into `outputs` (each at least count times the varying's size).
+  void capture(const VertexArray& vao, int count, std::span<const Buffer* const> outputs) const;
+
+ private:
+  Handle<deleteTransformFeedback> handle_;
 };
 
 class Renderbuffer {

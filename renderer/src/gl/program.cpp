@@ -91,7 +91,8 @@ std::string mapInfoLog(const std::string& log, const std::vector<std::string>& f
 
 // --- Program ------------------------------------------------------------------------------
 
-Result<Program> Program::build(const ShaderSource& vertex, const ShaderSource& fragment) {
+Result<Program> Program::build(const ShaderSource& vertex, const ShaderSource& fragment,
+                               const std::vector<std::string>& feedback) {
   auto vs = compile(vertex);
   if (!vs) return vs.error();
   auto fs = compile(fragment);
@@ -104,6 +105,12 @@ Result<Program> Program::build(const ShaderSource& vertex, const ShaderSource& f
   p.handle_ = Handle<deleteProgram>(id);
   glAttachShader(id, *vs);
   glAttachShader(id, *fs);
+  if (!feedback.empty()) {
+    std::vector<const char*> names;
+    for (const std::string& f : feedback) names.push_back(f.c_str());
+    glTransformFeedbackVaryings(id, static_cast<GLsizei>(names.size()), names.data(),
+                                GL_SEPARATE_ATTRIBS);
+  }
   glLinkProgram(id);
   glDetachShader(id, *vs);
   glDetachShader(id, *fs);
@@ -347,15 +354,17 @@ Result<ShaderSource> ShaderLibrary::compose(std::string_view file, ShaderStage s
 }
 
 Result<Program*> ShaderLibrary::program(std::string_view vertexFile, std::string_view fragmentFile,
-                                        const Defines& defines) {
+                                        const Defines& defines,
+                                        const std::vector<std::string>& feedback) {
   std::string key = std::string(vertexFile) + "|" + std::string(fragmentFile);
   for (const auto& [k, v] : defines) key += "|" + k + "=" + v;
+  for (const std::string& f : feedback) key += "|>" + f;
   if (auto it = cache_.find(key); it != cache_.end()) return it->second.get();
   auto vs = compose(vertexFile, ShaderStage::Vertex, defines);
   if (!vs) return vs.error();
   auto fs = compose(fragmentFile, ShaderStage::Fragment, defines);
   if (!fs) return fs.error();
-  auto prog = Program::build(*vs, *fs);
+  auto prog = Program::build(*vs, *fs, feedback);
   if (!prog) return prog.error();
   auto owned = std::make_unique<Program>(std::move(*prog));
   Program* raw = owned.get();

@@ -40,7 +40,9 @@ std::string mapInfoLog(const std::string& log, const std::vector<std::string>& f
 class Program {
  public:
   Program() = default;
-  static Result<Program> build(const ShaderSource& vertex, const ShaderSource& fragment);
+  // `feedback`: vertex outputs a transform feedback captures, one buffer each (in order).
+  static Result<Program> build(const ShaderSource& vertex, const ShaderSource& fragment,
+                               const std::vector<std::string>& feedback = {});
 
   void use() const;
   // Uniform setters act on this program, which must be in use (call use() first).
@@ -118,7 +120,8 @@ class ShaderLibrary {
                                const Defines& defines) const;
   // The program for (vertex file, fragment file, defines), built on first use and cached.
   Result<Program*> program(std::string_view vertexFile, std::string_view fragmentFile,
-                           const Defines& defines = {});
+                           const Defines& defines = {},
+                           const std::vector<std::string>& feedback = {});
   size_t cachedPrograms() const { return cache_.size(); }
   bool hasFile(std::string_view file) const { return files_.count(file) != 0; }
 

@@ -15,7 +15,11 @@ constexpr int kPosition = 0, kNormal = 1, kTangent = 2, kUv0 = 3, kUv1 = 4, kCol
 
 template <class T>
 Status addAttribute(GpuPrimitive& p, int location, const std::vector<T>& data, int components) {
-  auto buf = gl::Buffer::create(gl::BufferKind::Vertex, std::span<const T>(data));
+  // A played primitive's position, normal and tangent are rewritten at every pose.
+  const bool posed = p.deformation && location <= kTangent;
+  if (posed) p.posedBuffer[location] = static_cast<int>(p.buffers.size());
+  auto buf = gl::Buffer::create(posed ? gl::BufferKind::Feedback : gl::BufferKind::Vertex,
+                                std::span<const T>(data));
   if (!buf) return buf.error();
   p.vao.setAttribute(location, *buf, components, gl::AttribType::Float, false, 0, 0);
   p.buffers.push_back(std::move(*buf));
@@ -33,8 +37,8 @@ Status attributeOr(GpuPrimitive& p, int location, const std::vector<T>& data, in
 
 // One primitive's vertex arrays (constants for missing attributes) and index buffer, with its
 // capture stand-in's indices after its own.
-Result<std::unique_ptr<GpuPrimitive>> uploadPrimitive(const Primitive& prim, float meshScale,
-                                                      float sceneDiagonal) {
+Result<std::unique_ptr<GpuPrimitive>> uploadPrimitive(const Primitive& prim, int mesh,
+                                                      float meshScale, float sceneDiagonal) {
   auto p = std::make_unique<GpuPrimitive>();
   p->vao = gl::VertexArray::create();
   p->material = prim.material;
@@ -42,6 +46,11 @@ Result<std::unique_ptr<GpuPrimitive>> uploadPrimitive(const Primitive& prim, flo
   p->variantMaterials = prim.variantMaterials;
   p->bounds = prim.bounds;
   p->indexCount = static_cast<int>(prim.indices.size());
+  if (prim.deformation && prim.deformation->positions.size() == prim.positions.size()) {
+    auto d = GpuDeformation::create(*prim.deformation, mesh);
+    if (!d) return d.error();
+    p->deformation = std::move(*d);
+  }
   PN_TRY(addAttribute(*p, kPosition, prim.positions, 3));
   PN_TRY(attributeOr(*p, kNormal, prim.normals, 3, {0, 0, 1, 0}));
   PN_TRY(attributeOr(*p, kTangent, prim.tangents, 4, {0, 0, 0, 1}));
@@ -84,9 +93,10 @@ Status GpuScene::uploadMeshes(const Scene& scene) {
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
     std::vector<GpuPrimitive*> prims;
     for (const Primitive& prim : scene.meshes[mi].primitives) {
-      auto p = uploadPrimitive(prim, meshScale[mi], sceneDiagonal);
+      auto p = uploadPrimitive(prim, static_cast<int>(mi), meshScale[mi], sceneDiagonal);
       if (!p) return p.error();
       prims.push_back(p->get());
+      if ((*p)->deformation) deformed_.push_back(p->get());
       primitives_.push_back(std::move(*p));
     }
     meshes_.push_back(std::move(prims));
@@ -181,9 +191,55 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const Scene& scene) {
   PN_TRY(gs->uploadMeshes(scene));
   PN_TRY(gs->uploadMaterials(scene));
   gs->instances_ = scene.instances;
+  if (scene.rig) {
+    for (const Rig::MeshLink& link : scene.rig->meshes) gs->skinOf_.push_back(link.skin);
+  }
   gs->variantCount_ = static_cast<int>(scene.variants.size());
   PN_TRY(gs->buildDrawItems());
   return gs;
+}
+
+Status GpuScene::pose(const Pose& pose) {
+  for (size_t i = 0; i < instances_.size() && i < pose.instanceWorld.size(); ++i) {
+    instances_[i].world = pose.instanceWorld[i];
+  }
+  jointTextures_.resize(pose.joints.size());
+  for (size_t s = 0; s < pose.joints.size(); ++s) {
+    const std::vector<glm::mat4>& joints = pose.joints[s];
+    if (joints.empty()) continue;
+    gl::Texture2D& tex = jointTextures_[s];
+    if (!tex || tex.height() != static_cast<int>(joints.size())) {
+      gl::TextureDesc desc{.width = 3,
+                           .height = static_cast<int>(joints.size()),
+                           .format = gl::PixelFormat::RGBA32F};
+      desc.sampler.minFilter = desc.sampler.magFilter = gl::Filter::Nearest;
+      auto created = gl::Texture2D::create(desc);
+      if (!created) return created.error();
+      tex = std::move(*created);
+    }
+    // Rows of the affine part (deform.vert multiplies a row by the point).
+    std::vector<glm::vec4> rows;
+    rows.reserve(3 * joints.size());
+    for (const glm::mat4& m : joints) {
+      const glm::mat4 t = glm::transpose(m);
+      rows.insert(rows.end(), {t[0], t[1], t[2]});
+    }
+    tex.upload(0, rows.data(), gl::DataType::Float);
+  }
+  static const std::vector<float> kNoWeights;
+  for (GpuPrimitive* p : deformed_) {
+    const GpuDeformation& d = *p->deformation;
+    const int skin =
+        static_cast<size_t>(d.mesh) < skinOf_.size() ? skinOf_[static_cast<size_t>(d.mesh)] : -1;
+    const std::vector<glm::mat4>* joints = skin >= 0 && static_cast<size_t>(skin) < pose.joints.size()
+                                               ? &pose.joints[static_cast<size_t>(skin)]
+                                               : nullptr;
+    const auto& weights = static_cast<size_t>(d.mesh) < pose.weights.size()
+                              ? pose.weights[static_cast<size_t>(d.mesh)]
+                              : kNoWeights;
+    p->bounds = d.posedBounds(weights, joints);
+  }
+  return buildDrawItems();
 }
 
 Status GpuScene::selectVariant(int variant) {

@@ -12,7 +12,9 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "gpu/gpu_deformation.h"
 #include "gpu/material_features.h"
+#include "penumbra/animation.h"
 #include "penumbra/scene.h"
 
 namespace penumbra {
@@ -28,7 +30,11 @@ struct GpuPrimitive {
   int material = -1;  // the one shown: its own or the selected variant's
   int ownMaterial = -1;
   std::vector<int> variantMaterials;  // KHR_materials_variants, per variant
-  Bounds bounds;
+  Bounds bounds;  // at the current pose
+  // Playback (Primitive::deformation): its rest data, and which of `buffers` hold the posed
+  // position, normal and tangent (-1: none) that passes/deform_pass.cpp rewrites.
+  std::unique_ptr<GpuDeformation> deformation;
+  int posedBuffer[3] = {-1, -1, -1};
 };
 
 // A material's textures. The five core slots (TextureSlot::BaseColor..Emissive) are 2D
@@ -90,6 +96,18 @@ class GpuScene {
   // rebuilding the draw lists; the buffers and textures stay.
   Status selectVariant(int variant);
   int variantCount() const { return variantCount_; }
+  // Playback: moves the instances to the pose, uploads its joint matrices (jointTexture) and
+  // takes its bounds; the posed vertices themselves are passes::DeformPass's to write.
+  Status pose(const Pose& pose);
+  const std::vector<GpuPrimitive*>& deformed() const { return deformed_; }
+  // The skin posing Scene mesh `mesh` (-1: none).
+  int skinOf(int mesh) const {
+    return static_cast<size_t>(mesh) < skinOf_.size() ? skinOf_[static_cast<size_t>(mesh)] : -1;
+  }
+  // A skin's joint matrices at the pose, three RGBA32F texels (rows) per joint.
+  const gl::Texture2D& jointTexture(int skin) const {
+    return jointTextures_[static_cast<size_t>(skin)];
+  }
   size_t textureCount() const { return textures_.size(); }
 
   // Sets the material uniforms and binds its textures (its five samplers and its layers' array) on a
@@ -126,6 +144,9 @@ class GpuScene {
   std::vector<DrawItem> blended_;
   std::vector<DrawItem> transmissive_;
   std::vector<Instance> instances_;
+  std::vector<GpuPrimitive*> deformed_;   // primitives with a deformation
+  std::vector<gl::Texture2D> jointTextures_;  // per skin (Rig::skins)
+  std::vector<int> skinOf_;               // per Scene mesh: its skin (Rig::MeshLink), -1: none
   gl::Buffer copyRows_;  // DrawItem::copyOffset: three vec4 rows per copy
   int variantCount_ = 0;
   Bounds bounds_;

@@ -9,6 +9,7 @@
 #include "gl/capabilities.h"
 #include "gl/program.h"
 #include "passes/accumulate_pass.h"
+#include "passes/deform_pass.h"
 #include "passes/effect_chain.h"
 #include "passes/lighting_pass.h"
 #include "passes/limits.h"
@@ -34,6 +35,7 @@ struct GpuPasses {
   std::optional<passes::OcclusionPass> occlusionPass;
   passes::EffectChain effects;                // post effects, tone mapping last
   std::optional<passes::ProbeVolume> probes;  // absent without renderable half floats
+  std::optional<passes::DeformPass> deform;   // made at the first pose (Renderer::setPose)
 
   // The capabilities, the shaders' common defines and the passes every frame uses.
   Status createPasses(const RendererOptions& options) {

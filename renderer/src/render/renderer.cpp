@@ -1,5 +1,8 @@
 // The renderer: prepares GL state for a scene, environment, camera and settings, and draws
 // frame n of the progressive controller's plan (FrameRenderer). The passes do the drawing.
+#include <cmath>
+#include <string>
+
 #include "gl/memory.h"
 #include "render/renderer_impl.h"
 #include "scene/self_visibility.h"
@@ -24,6 +27,8 @@ Status Renderer::setScene(const Scene& scene) {
   // One check for the whole upload where allocations defer theirs (WebGL: gl::checkAllocation).
   PN_TRY(gl::checkError("uploading the scene"));
   impl_->scene = std::move(*gs);
+  impl_->rig = scene.rig;
+  impl_->restBounds = impl_->scene->bounds();
   if (impl_->pointShadows) impl_->pointShadows->invalidate();
   impl_->sceneLights = scene.lights;
   impl_->setLights();  // after the scene: first light weighs the lights by its bounds
@@ -80,6 +85,33 @@ Status Renderer::setSkybox(const PackedEnvironment* skybox) {
     PN_TRY(gl::checkError("uploading the skybox"));
     impl_->skybox = std::move(*env);
   }
+  impl_->controller.invalidate();
+  return {};
+}
+
+Status Renderer::setPose(int animation, float time) {
+  if (!impl_->scene) return makeError("setPose: no scene (call setScene first)");
+  if (!impl_->rig) {
+    return makeError("setPose: the scene was loaded without playback (LoadOptions::playback)");
+  }
+  if (animation < -1 || animation >= static_cast<int>(impl_->rig->clips.size())) {
+    return makeError("no animation " + std::to_string(animation) + ": the scene has " +
+                     std::to_string(impl_->rig->clips.size()));
+  }
+  if (!std::isfinite(time)) return makeError("setPose: the time must be a finite number");
+  gl::StateGuard guard(impl_->options.preserveHostState);
+  if (!impl_->deform) {
+    auto pass = passes::DeformPass::create(impl_->library);
+    if (!pass) return pass.error();
+    impl_->deform.emplace(std::move(*pass));
+  }
+  const Pose pose = poseRig(*impl_->rig, animation, time);
+  PN_TRY(impl_->scene->pose(pose));
+  PN_TRY(impl_->deform->run(*impl_->scene, pose));
+  // The geometry moved: point-light shadow maps are drawn again and the probes gather anew
+  // (their places stay those of the rest pose).
+  if (impl_->pointShadows) impl_->pointShadows->invalidate();
+  if (impl_->probes) impl_->probes->clear();
   impl_->controller.invalidate();
   return {};
 }

@@ -11,6 +11,7 @@
 
 #include "gpu/gpu_environment.h"
 #include "gpu/gpu_scene.h"
+#include "penumbra/animation.h"
 #include "penumbra/ibl.h"
 #include "penumbra/scene.h"
 
@@ -18,6 +19,8 @@ namespace penumbra {
 
 struct SceneState {
   std::unique_ptr<GpuScene> scene;
+  std::shared_ptr<const Rig> rig;  // playback's (Scene::rig; null: a still scene)
+  Bounds restBounds;               // the scene's as loaded: the default camera's, not the pose's
   // Some surface of the scene faces another (scene/self_visibility.h): without, the probe
   // volume and the occlusion rays are skipped, as they could only give what is there without.
   bool seesItself = true;
@@ -37,7 +40,7 @@ struct SceneState {
   Camera activeCamera() const { return hasCamera ? camera : defaultCameraForBounds(); }
   Camera defaultCameraForBounds() const {
     Scene empty;
-    if (scene) empty.bounds = scene->bounds();
+    empty.bounds = restBounds;
     return defaultCamera(empty);
   }
 };

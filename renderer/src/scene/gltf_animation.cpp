@@ -26,62 +26,6 @@ AnimationDesc::Path pathNamed(const std::string& s, bool& ok) {
   return P::Translation;
 }
 
-// The sampler's value at `time` with `width` floats a key (4 for rotations).
-std::vector<float> sample(const std::vector<float>& times, const std::vector<float>& values,
-                          AnimationDesc::Interpolation interp, size_t width, float time,
-                          bool rotation) {
-  using I = AnimationDesc::Interpolation;
-  const size_t keys = times.size();
-  const size_t stride = interp == I::CubicSpline ? 3 * width : width;
-  const size_t offset = interp == I::CubicSpline ? width : 0;  // the value between the tangents
-  auto value = [&](size_t k) {
-    return values.begin() + static_cast<std::ptrdiff_t>(k * stride + offset);
-  };
-  std::vector<float> out(width);
-  // Before the first key and after the last the sampler holds its end values (glTF 3.11).
-  if (time <= times.front() || keys == 1) {
-    std::copy_n(value(0), width, out.begin());
-    return out;
-  }
-  if (time >= times.back()) {
-    std::copy_n(value(keys - 1), width, out.begin());
-    return out;
-  }
-  const size_t k =
-      static_cast<size_t>(std::upper_bound(times.begin(), times.end(), time) - times.begin()) - 1;
-  const float dt = times[k + 1] - times[k];
-  const float u = dt > 0.0f ? (time - times[k]) / dt : 0.0f;
-  if (interp == I::Step) {
-    std::copy_n(value(k), width, out.begin());
-  } else if (interp == I::Linear && rotation) {
-    const auto a = value(k), b = value(k + 1);
-    const glm::quat qa(a[3], a[0], a[1], a[2]), qb(b[3], b[0], b[1], b[2]);
-    const glm::quat q = glm::slerp(qa, glm::dot(qa, qb) < 0.0f ? -qb : qb, u);
-    out = {q.x, q.y, q.z, q.w};
-  } else if (interp == I::Linear) {
-    for (size_t c = 0; c < width; ++c) out[c] = (1.0f - u) * value(k)[c] + u * value(k + 1)[c];
-  } else {
-    // Hermite: the key's value and out-tangent, the next key's in-tangent and value (glTF C.2).
-    const float u2 = u * u, u3 = u2 * u;
-    const float h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2,
-                h11 = u3 - u2;
-    const auto v0 = value(k), v1 = value(k + 1);
-    const auto outTangent = v0 + static_cast<std::ptrdiff_t>(width);
-    const auto inTangent = v1 - static_cast<std::ptrdiff_t>(width);
-    for (size_t c = 0; c < width; ++c) {
-      out[c] = h00 * v0[c] + h10 * dt * outTangent[c] + h01 * v1[c] + h11 * dt * inTangent[c];
-    }
-  }
-  if (rotation) {
-    const float len =
-        std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
-    if (len > 0.0f) {
-      for (float& c : out) c /= len;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 void parseAnimations(Parser& p, const json& root, Document& doc, size_t accessorCount,
@@ -139,10 +83,10 @@ float animationDuration(Document& doc, int animation, LoadContext& ctx) {
   return end;
 }
 
-Status poseAnimation(Document& doc, int animation, float time, LoadContext& ctx) {
+Result<std::vector<AnimationCurve>> readClip(Document& doc, int animation, LoadContext& ctx) {
   const AnimationDesc& anim = doc.animations[static_cast<size_t>(animation)];
   const std::string where = "animations[" + std::to_string(animation) + "]";
-  std::vector<bool> moved(doc.nodes.size(), false);
+  std::vector<AnimationCurve> curves;
   for (size_t c = 0; c < anim.channels.size(); ++c) {
     const AnimationDesc::Channel& ch = anim.channels[c];
     const std::string what = where + ".channels[" + std::to_string(c) + "]";
@@ -157,7 +101,6 @@ Status poseAnimation(Document& doc, int animation, float time, LoadContext& ctx)
     if (!times.ok()) return times.error();
     auto values = readFloats(doc, s.output, ctx, what + " output");
     if (!values.ok()) return values.error();
-    NodeDesc& node = doc.nodes[static_cast<size_t>(ch.node)];
     using P = AnimationDesc::Path;
     const size_t perKey = s.interpolation == AnimationDesc::Interpolation::CubicSpline ? 3 : 1;
     size_t width = ch.path == P::Rotation ? 4 : 3;
@@ -170,26 +113,41 @@ Status poseAnimation(Document& doc, int animation, float time, LoadContext& ctx)
                        " times, ascending) and output (" + std::to_string(values->size()) +
                        " values) do not match");
     }
-    const std::vector<float> v =
-        sample(*times, *values, s.interpolation, width, time, ch.path == P::Rotation);
-    if (ch.path == P::Weights) {
-      node.weights = v;
-      continue;
-    }
-    if (node.hasMatrix) {
+    if (ch.path != P::Weights && doc.nodes[static_cast<size_t>(ch.node)].hasMatrix) {
       ctx.warn(what + ": node " + std::to_string(ch.node) +
                " has a matrix, which animations may not target; ignored");
       continue;
     }
-    if (ch.path == P::Translation) node.translation = {v[0], v[1], v[2]};
-    if (ch.path == P::Scale) node.scale = {v[0], v[1], v[2]};
-    if (ch.path == P::Rotation) node.rotation = glm::quat(v[3], v[0], v[1], v[2]);
-    moved[static_cast<size_t>(ch.node)] = true;
+    AnimationCurve curve;
+    curve.node = ch.node;
+    curve.path = static_cast<AnimationCurve::Path>(ch.path);
+    curve.interpolation = static_cast<AnimationCurve::Interpolation>(s.interpolation);
+    curve.width = width;
+    curve.times = std::move(times).value();
+    curve.values = std::move(values).value();
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+void poseAnimation(Document& doc, const std::vector<AnimationCurve>& clip, float time) {
+  std::vector<bool> moved(doc.nodes.size(), false);
+  for (const AnimationCurve& curve : clip) {
+    NodeDesc& node = doc.nodes[static_cast<size_t>(curve.node)];
+    const std::vector<float> v = curve.sample(time);
+    using P = AnimationCurve::Path;
+    if (curve.path == P::Weights) {
+      node.weights = v;
+      continue;
+    }
+    if (curve.path == P::Translation) node.translation = {v[0], v[1], v[2]};
+    if (curve.path == P::Scale) node.scale = {v[0], v[1], v[2]};
+    if (curve.path == P::Rotation) node.rotation = glm::quat(v[3], v[0], v[1], v[2]);
+    moved[static_cast<size_t>(curve.node)] = true;
   }
   for (size_t n = 0; n < doc.nodes.size(); ++n) {
     if (moved[n]) doc.nodes[n].local = composeTrs(doc.nodes[n]);
   }
-  return {};
 }
 
 glm::mat4 composeTrs(const NodeDesc& n) {

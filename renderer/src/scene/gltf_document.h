@@ -23,6 +23,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "penumbra/animation.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 
@@ -152,8 +153,8 @@ struct NodeDesc {
 };
 
 struct AnimationDesc {
-  enum class Interpolation { Linear, Step, CubicSpline };
-  enum class Path { Translation, Rotation, Scale, Weights };
+  using Interpolation = AnimationCurve::Interpolation;
+  using Path = AnimationCurve::Path;
   struct Sampler {
     int input = -1, output = -1;  // accessors: key times (s), values
     Interpolation interpolation = Interpolation::Linear;
@@ -294,13 +295,20 @@ Result<ViewBytes> viewBytes(Document& doc, int view, LoadContext& ctx);
 Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vector<float>& weights,
                          Primitive& prim, LoadContext& ctx, const std::string& what);
 
+// Every morph target's POSITION, NORMAL and TANGENT displacements, for playback.
+Result<std::vector<Deformation::Target>> readMorphTargets(Document& doc, const PrimitiveDesc& pd,
+                                                         size_t vertexCount, LoadContext& ctx,
+                                                         const std::string& what);
+
 // ---- gltf_animation.cpp ----
 // The end of animation `animation` (its last key time), in seconds.
 float animationDuration(Document& doc, int animation, LoadContext& ctx);
-// Poses the document at `time` seconds of animation `animation`: its channels replace their
-// nodes' translation, rotation and scale (and `local`) or morph weights.
-Status poseAnimation(Document& doc, int animation, float time, LoadContext& ctx);
-// A node's local matrix from its translation, rotation and scale.
+// Animation `animation`'s channels as curves (those without a node, or on a matrix node, are
+// left out with a warning); a sampler whose input and output disagree is an error.
+Result<std::vector<AnimationCurve>> readClip(Document& doc, int animation, LoadContext& ctx);
+// Poses the document at `time` seconds of `clip`: its curves replace their nodes' translation,
+// rotation and scale (and `local`) or morph weights.
+void poseAnimation(Document& doc, const std::vector<AnimationCurve>& clip, float time);
 glm::mat4 composeTrs(const NodeDesc& node);
 
 // ---- gltf_skin.cpp ----
@@ -315,6 +323,12 @@ Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
 Status applySkin(const std::vector<float>& jointIndices, const std::vector<float>& weights,
                  const std::vector<glm::mat4>& joints, Primitive& prim, LoadContext& ctx,
                  const std::string& what);
+
+// Playback's rig (penumbra/animation.h): the nodes at rest with their parents, an instance at
+// its node (a copy's own transform under it), and every skin's joints and inverse binds.
+std::vector<Rig::Node> rigNodes(const Document& doc, const std::vector<int>& parent);
+void rigInstance(Rig& rig, int node, const glm::mat4& local, bool skinned);
+Status rigSkins(Document& doc, Rig& rig, LoadContext& ctx);
 
 // ---- lamp_faces.cpp ----
 // Marks instances whose emissive primitives sit on an area light as that light's visible face

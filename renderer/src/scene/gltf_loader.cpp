@@ -171,13 +171,24 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     animations.push_back(
         {doc.animations[a].name, gltf::animationDuration(doc, static_cast<int>(a), ctx)});
   }
+  std::vector<std::vector<AnimationCurve>> clips;
+  if (options.playback || !options.animation.empty()) {
+    for (size_t a = 0; a < doc.animations.size(); ++a) {
+      auto clip = gltf::readClip(doc, static_cast<int>(a), ctx);
+      if (!clip.ok()) return clip.error();
+      clips.push_back(std::move(clip).value());
+    }
+  }
+  // Playback poses from the rest pose: the rig keeps the nodes before any still pose.
+  auto rig = options.playback ? std::make_shared<Rig>() : nullptr;
+  if (rig) rig->nodes = gltf::rigNodes(doc, parent);
   if (!options.animation.empty()) {
     auto index = findAnimation(animations, options.animation, ctx);
     if (!index.ok()) return index.error();
     if (!std::isfinite(options.animationTime)) {
       return ctx.error("animation time must be a finite number of seconds");
     }
-    PN_TRY(gltf::poseAnimation(doc, *index, options.animationTime, ctx));
+    gltf::poseAnimation(doc, clips[static_cast<size_t>(*index)], options.animationTime);
   }
 
   std::vector<int> roots;
@@ -192,8 +203,9 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
 
   Scene scene;
   // A scene mesh per (glTF mesh, morph weights, skin): a node's own weights pose its own copy,
-  // and a skinned node's mesh is posed by its skin's joints.
-  using MeshKey = std::tuple<int, std::vector<float>, int>;
+  // and a skinned node's mesh is posed by its skin's joints. For playback a morphed mesh is its
+  // node's own (the last part of the key), since nodes animate their weights apart.
+  using MeshKey = std::tuple<int, std::vector<float>, int, int>;
   std::map<MeshKey, int> meshRemap;
   std::vector<MeshKey> meshOrder;
   const std::vector<glm::mat4> nodeWorld = worldTransforms(doc, parent);
@@ -212,7 +224,13 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     const gltf::NodeDesc& node = doc.nodes[static_cast<size_t>(index)];
     const glm::mat4 world = parentWorld * node.local;
     if (node.mesh >= 0) {
-      MeshKey key{node.mesh, node.weights.value_or(std::vector<float>{}), node.skin};
+      const bool ownMorph =
+          rig && !doc.meshes[static_cast<size_t>(node.mesh)].primitives.empty() &&
+          std::any_of(doc.meshes[static_cast<size_t>(node.mesh)].primitives.begin(),
+                      doc.meshes[static_cast<size_t>(node.mesh)].primitives.end(),
+                      [](const gltf::PrimitiveDesc& pd) { return !pd.targets.empty(); });
+      MeshKey key{node.mesh, node.weights.value_or(std::vector<float>{}), node.skin,
+                  ownMorph ? index : -1};
       auto [it, added] = meshRemap.emplace(key, static_cast<int>(meshOrder.size()));
       if (added) meshOrder.push_back(std::move(key));
       const int m = it->second;
@@ -224,11 +242,13 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
           Instance copy{m, world * local, node.name, !node.lightProxy};
           copy.copyOf = index;
           scene.instances.push_back(std::move(copy));
+          if (rig) gltf::rigInstance(*rig, index, local, false);
         }
       } else {
         // A skinned mesh is posed in world space by its joints (gltf_skin.cpp).
         scene.instances.push_back(
             Instance{m, node.skin >= 0 ? glm::mat4(1.0f) : world, node.name, !node.lightProxy});
+        if (rig) gltf::rigInstance(*rig, index, glm::mat4(1.0f), node.skin >= 0);
       }
     }
     if (node.camera >= 0) gltf::addNodeCamera(doc, node, world, scene, ctx);
@@ -238,7 +258,8 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     }
   }
 
-  for (const auto& [m, weights, skin] : meshOrder) {
+  for (const auto& [m, weights, skin, owner] : meshOrder) {
+    if (rig) rig->meshes.push_back({skin, owner});
     std::vector<glm::mat4> joints;
     if (skin >= 0) {
       auto jm = gltf::jointMatrices(doc, skin, nodeWorld, ctx);
@@ -267,6 +288,11 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   }
   scene.variants = doc.variants;
   scene.animations = std::move(animations);
+  if (rig) {
+    PN_TRY(gltf::rigSkins(doc, *rig, ctx));
+    rig->clips = std::move(clips);
+    scene.rig = std::move(rig);
+  }
   scene.warnings = std::move(ctx.warnings);
   return scene;
 }

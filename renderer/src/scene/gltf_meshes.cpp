@@ -204,15 +204,27 @@ Status finishShading(const Document& doc, const PrimitiveDesc& pd, Primitive& pr
 
 // Poses a skinned primitive; its JOINTS_0 and WEIGHTS_0 come through `src`, so Draco-compressed
 // ones are read from the decoded mesh (their accessors have no data of their own).
+// With `keep`, its joints and weights also go there, for playback.
 Status skinPrimitive(AttributeSource& src, const std::vector<glm::mat4>& joints, Primitive& prim,
-                     LoadContext& ctx, const std::string& what) {
+                     LoadContext& ctx, const std::string& what, Deformation* keep) {
   int components = 0;
   auto ji = src.get("JOINTS_0", {4}, components);
   if (!ji.ok()) return ji.error();
   auto wi = src.get("WEIGHTS_0", {4}, components);
   if (!wi.ok()) return wi.error();
   if (!ji->has_value() || !wi->has_value()) return {};  // not skinned itself
-  return applySkin(**ji, **wi, joints, prim, ctx, what);
+  PN_TRY(applySkin(**ji, **wi, joints, prim, ctx, what));
+  if (keep) {
+    const std::vector<float>& j = **ji;
+    const std::vector<float>& w = **wi;
+    keep->joints.resize(j.size() / 4);
+    keep->weights.resize(w.size() / 4);
+    for (size_t v = 0; v < keep->joints.size(); ++v) {
+      keep->joints[v] = {j[4 * v], j[4 * v + 1], j[4 * v + 2], j[4 * v + 3]};
+      keep->weights[v] = {w[4 * v], w[4 * v + 1], w[4 * v + 2], w[4 * v + 3]};
+    }
+  }
+  return {};
 }
 
 // A primitive whose triangles all have zero area draws nothing: say so rather than render an
@@ -252,8 +264,21 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
 
   Primitive prim;
   PN_TRY(readAttributes(src, prim, ctx, what));
-  if (!pd.targets.empty()) PN_TRY(applyMorphTargets(doc, pd, weights, prim, ctx, what));
-  if (!joints.empty()) PN_TRY(skinPrimitive(src, joints, prim, ctx, what));
+  // Playback keeps the primitive as the file has it, and what poses it.
+  std::optional<Primitive> base;
+  auto deformation = std::make_shared<Deformation>();
+  if (ctx.options.playback && (!pd.targets.empty() || !joints.empty())) base = prim;
+  if (!pd.targets.empty()) {
+    PN_TRY(applyMorphTargets(doc, pd, weights, prim, ctx, what));
+    if (base) {
+      auto targets = readMorphTargets(doc, pd, prim.positions.size(), ctx, what);
+      if (!targets.ok()) return targets.error();
+      deformation->targets = std::move(targets).value();
+    }
+  }
+  if (!joints.empty()) {
+    PN_TRY(skinPrimitive(src, joints, prim, ctx, what, base ? deformation.get() : nullptr));
+  }
   const size_t vertexCount = prim.positions.size();
 
   // Index sequence in the primitive's topology.
@@ -301,6 +326,20 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
   PN_TRY(finishShading(doc, pd, prim, indexed, mode, ctx, what));
 
   for (uint32_t i : prim.indices) prim.bounds.extend(prim.positions[i]);
+  if (base && (!deformation->targets.empty() || !deformation->joints.empty())) {
+    if (base->positions.size() != prim.positions.size()) {
+      // Flat normals of a strip or fan without indices unweld its vertices.
+      ctx.warn(what + ": its vertices were unwelded for flat normals; it plays at its rest pose");
+    } else {
+      // Generated normals and tangents come from the unposed positions, as the pose moves them.
+      base->indices = prim.indices;
+      PN_TRY(finishShading(doc, pd, *base, indexed, mode, ctx, what));
+      deformation->positions = std::move(base->positions);
+      deformation->normals = std::move(base->normals);
+      deformation->tangents = std::move(base->tangents);
+      prim.deformation = std::move(deformation);
+    }
+  }
   return prim;
 }
 

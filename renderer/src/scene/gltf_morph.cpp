@@ -48,4 +48,33 @@ Status applyMorphTargets(Document& doc, const PrimitiveDesc& pd, const std::vect
   return {};
 }
 
+Result<std::vector<Deformation::Target>> readMorphTargets(Document& doc, const PrimitiveDesc& pd,
+                                                         size_t vertexCount, LoadContext& ctx,
+                                                         const std::string& what) {
+  std::vector<Deformation::Target> targets(pd.targets.size());
+  for (size_t t = 0; t < pd.targets.size(); ++t) {
+    for (const auto& [name, accessor] : pd.targets[t]) {
+      std::vector<glm::vec3>* out = name == "POSITION" ? &targets[t].positions
+                                    : name == "NORMAL" ? &targets[t].normals
+                                    : name == "TANGENT" ? &targets[t].tangents
+                                                        : nullptr;
+      if (!out) continue;
+      const std::string where = what + " target " + std::to_string(t) + " " + name;
+      const AccessorDesc& a = doc.accessors[static_cast<size_t>(accessor)];
+      if (a.components != 3 || a.count != vertexCount) {
+        return ctx.error(where + ": accessor " + std::to_string(accessor) + " is " +
+                         std::to_string(a.count) + " " + a.type + "; expected a VEC3 per vertex (" +
+                         std::to_string(vertexCount) + ")");
+      }
+      auto d = readFloats(doc, accessor, ctx, where);
+      if (!d.ok()) return d.error();
+      out->resize(vertexCount);
+      for (size_t i = 0; i < vertexCount; ++i) {
+        (*out)[i] = glm::vec3((*d)[3 * i], (*d)[3 * i + 1], (*d)[3 * i + 2]);
+      }
+    }
+  }
+  return targets;
+}
+
 }  // namespace penumbra::gltf

@@ -8,30 +8,65 @@
 
 namespace penumbra::gltf {
 
+Result<std::vector<glm::mat4>> inverseBindMatrices(Document& doc, int skin, LoadContext& ctx) {
+  const SkinDesc& s = doc.skins[static_cast<size_t>(skin)];
+  const std::string where = "skins[" + std::to_string(skin) + "]";
+  std::vector<glm::mat4> out(s.joints.size(), glm::mat4(1.0f));
+  if (s.inverseBindMatrices < 0) return out;
+  const AccessorDesc& a = doc.accessors[static_cast<size_t>(s.inverseBindMatrices)];
+  if (a.components != 16 || a.count < s.joints.size()) {
+    return ctx.error(where + ".inverseBindMatrices: accessor " +
+                     std::to_string(s.inverseBindMatrices) + " is " + std::to_string(a.count) +
+                     " " + a.type + "; expected a MAT4 per joint (" +
+                     std::to_string(s.joints.size()) + ")");
+  }
+  auto m = readFloats(doc, s.inverseBindMatrices, ctx, where + " inverseBindMatrices");
+  if (!m.ok()) return m.error();
+  for (size_t j = 0; j < s.joints.size(); ++j) out[j] = glm::make_mat4(&(*m)[16 * j]);
+  return out;
+}
+
 Result<std::vector<glm::mat4>> jointMatrices(Document& doc, int skin,
                                              const std::vector<glm::mat4>& nodeWorld,
                                              LoadContext& ctx) {
   const SkinDesc& s = doc.skins[static_cast<size_t>(skin)];
-  const std::string where = "skins[" + std::to_string(skin) + "]";
-  std::vector<float> ibm;
-  if (s.inverseBindMatrices >= 0) {
-    const AccessorDesc& a = doc.accessors[static_cast<size_t>(s.inverseBindMatrices)];
-    if (a.components != 16 || a.count < s.joints.size()) {
-      return ctx.error(where + ".inverseBindMatrices: accessor " +
-                       std::to_string(s.inverseBindMatrices) + " is " + std::to_string(a.count) +
-                       " " + a.type + "; expected a MAT4 per joint (" +
-                       std::to_string(s.joints.size()) + ")");
-    }
-    auto m = readFloats(doc, s.inverseBindMatrices, ctx, where + " inverseBindMatrices");
-    if (!m.ok()) return m.error();
-    ibm = std::move(m).value();
-  }
-  std::vector<glm::mat4> out(s.joints.size(), glm::mat4(1.0f));
+  auto out = inverseBindMatrices(doc, skin, ctx);
+  if (!out.ok()) return out.error();
   for (size_t j = 0; j < s.joints.size(); ++j) {
-    const glm::mat4 inverseBind = ibm.empty() ? glm::mat4(1.0f) : glm::make_mat4(&ibm[16 * j]);
-    out[j] = nodeWorld[static_cast<size_t>(s.joints[j])] * inverseBind;
+    (*out)[j] = nodeWorld[static_cast<size_t>(s.joints[j])] * (*out)[j];
   }
   return out;
+}
+
+std::vector<Rig::Node> rigNodes(const Document& doc, const std::vector<int>& parent) {
+  std::vector<Rig::Node> nodes(doc.nodes.size());
+  for (size_t i = 0; i < doc.nodes.size(); ++i) {
+    const NodeDesc& d = doc.nodes[i];
+    Rig::Node& n = nodes[i];
+    n.parent = parent[i];
+    n.hasMatrix = d.hasMatrix;
+    n.matrix = d.local;
+    n.translation = d.translation;
+    n.rotation = d.rotation;
+    n.scale = d.scale;
+    if (d.mesh >= 0) n.weights = d.weights.value_or(doc.meshes[static_cast<size_t>(d.mesh)].weights);
+  }
+  return nodes;
+}
+
+void rigInstance(Rig& rig, int node, const glm::mat4& local, bool skinned) {
+  rig.instanceNode.push_back(node);
+  rig.instanceLocal.push_back(local);
+  rig.instanceSkinned.push_back(skinned);
+}
+
+Status rigSkins(Document& doc, Rig& rig, LoadContext& ctx) {
+  for (size_t s = 0; s < doc.skins.size(); ++s) {
+    auto ibm = inverseBindMatrices(doc, static_cast<int>(s), ctx);
+    if (!ibm.ok()) return ibm.error();
+    rig.skins.push_back({doc.skins[s].joints, std::move(ibm).value()});
+  }
+  return {};
 }
 
 Status applySkin(const std::vector<float>& jointIndices, const std::vector<float>& weights,

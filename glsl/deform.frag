@@ -1,0 +1,2 @@
+// Playback's pose is captured before rasterization (deform.vert): nothing is drawn.
+void main() {}
