@@ -168,28 +168,25 @@ std::string sample(const std::string& model, const std::string& file) {
   return std::filesystem::exists(path) ? path.string() : std::string();
 }
 
-TEST_F(AnimationGLTest, FoxSkinMatchesTheCpuPoseAtThreeTimes) {
-  const std::string fox = sample("Fox", "Fox.glb");
-  if (fox.empty()) GTEST_SKIP() << "../shared/gltf-sample-assets/Fox is not here";
-  auto rest = loadGltf(fox);
+// A sample model played at `times`, seen from its bounds' centre plus `eye` radii.
+void expectSampleModel(const std::string& model, const std::string& file, glm::vec3 eye,
+                       std::initializer_list<float> times, const std::string& name) {
+  const std::string path = sample(model, file);
+  if (path.empty()) GTEST_SKIP() << "../shared/gltf-sample-assets/" << model << " is not here";
+  auto rest = loadGltf(path);
   ASSERT_TRUE(rest.ok()) << rest.message();
   const glm::vec3 c = rest->bounds.center();
-  const float r = rest->bounds.radius();
-  expectPlayedAsPosed([&](const LoadOptions& o) { return loadGltf(fox, o); },
-                      lookAtCamera(c + glm::vec3(2.2f * r, 0.3f * r, 0.8f * r), c, 40.0f),
-                      {0.3f, 0.9f, 1.6f}, "animation_fox");
+  expectPlayedAsPosed([&](const LoadOptions& o) { return loadGltf(path, o); },
+                      lookAtCamera(c + rest->bounds.radius() * eye, c, 40.0f), times, name);
+}
+
+TEST_F(AnimationGLTest, FoxSkinMatchesTheCpuPoseAtThreeTimes) {
+  expectSampleModel("Fox", "Fox.glb", {2.2f, 0.3f, 0.8f}, {0.3f, 0.9f, 1.6f}, "animation_fox");
 }
 
 TEST_F(AnimationGLTest, MorphCubeMatchesTheCpuPoseAtThreeTimes) {
-  const std::string cube = sample("AnimatedMorphCube_Quantized", "AnimatedMorphCube.gltf");
-  if (cube.empty()) GTEST_SKIP() << "../shared/gltf-sample-assets/AnimatedMorphCube is not here";
-  auto rest = loadGltf(cube);
-  ASSERT_TRUE(rest.ok()) << rest.message();
-  const glm::vec3 c = rest->bounds.center();
-  const float r = rest->bounds.radius();
-  expectPlayedAsPosed([&](const LoadOptions& o) { return loadGltf(cube, o); },
-                      lookAtCamera(c + glm::vec3(1.6f * r, 1.2f * r, 2.2f * r), c, 40.0f),
-                      {0.5f, 1.2f, 2.5f}, "animation_morph_cube");
+  expectSampleModel("AnimatedMorphCube_Quantized", "AnimatedMorphCube.gltf", {1.6f, 1.2f, 2.2f},
+                    {0.5f, 1.2f, 2.5f}, "animation_morph_cube");
 }
 
 TEST_F(AnimationGLTest, BadPosesAreOneLineErrors) {

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "penumbra/animation.h"
 #include "scene_gltf_builder.h"
 
 namespace penumbra::test {
@@ -87,47 +88,50 @@ TEST(SceneAnimation, RotationsSlerpAlongTheShortestArc) {
   expectAt(x, {std::cos(glm::radians(45.0f)), 0, -std::sin(glm::radians(45.0f))}, "x axis");
 }
 
+// A skinned quad whose joint moves, and a morphed quad whose weights change (animation "act";
+// animated false: the same file with `jointAt` and `weight` as its rest pose and no animation).
+GltfBuilder skinAndMorph(bool animated, glm::vec3 jointAt, float weight) {
+  GltfBuilder b;
+  const int pos = b.vec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const std::vector<uint8_t> joints(16, 0);
+  const int ja = b.accessor(b.view(joints), kUByte, 4, "VEC4");
+  const int wa = b.vec4({{1, 0, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}});
+  const int skinned =
+      b.mesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", ja}, {"WEIGHTS_0", wa}}},
+              {"indices", b.indices16({0, 1, 2, 0, 2, 3})}});
+  const int lift = b.vec3({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+  const int morphed = b.push("meshes", {{"primitives",
+                                         {{{"attributes", {{"POSITION", pos}}},
+                                           {"indices", b.indices16({0, 1, 2, 0, 2, 3})},
+                                           {"targets", {{{"POSITION", lift}}}}}}},
+                                        {"weights", {animated ? 0.0f : weight}}});
+  const int joint =
+      b.node({{"name", "joint"}, {"translation", {jointAt.x, jointAt.y, jointAt.z}}});
+  b.push("skins", {{"joints", {joint}}});
+  const int body = b.node({{"mesh", skinned}, {"skin", 0}});
+  const int cube = b.node({{"mesh", morphed}, {"translation", {5, 0, 0}}});
+  b.scene({joint, body, cube});
+  if (animated) {
+    const int times = scalarAccessor(b, {0, 1, 2});
+    const int moves = b.vec3({{0, 0, 0}, {0, 2, 0}, {0, 2, 4}});
+    const int weights = scalarAccessor(b, {0, 1, 0});
+    b.push("animations",
+           {{"name", "act"},
+            {"samplers",
+             {{{"input", times}, {"output", moves}}, {{"input", times}, {"output", weights}}}},
+            {"channels",
+             {{{"sampler", 0}, {"target", {{"node", joint}, {"path", "translation"}}}},
+              {{"sampler", 1}, {"target", {{"node", cube}, {"path", "weights"}}}}}}});
+  }
+  return b;
+}
+
 TEST(SceneAnimation, PosedAtTIsTheFileWhoseRestPoseIsThatPose) {
   // A skinned quad whose joint moves, and a morphed quad whose weights change: loaded at time
   // 1.5 they match the same file with the sampled values written as its rest pose.
-  auto build = [](bool animated, glm::vec3 jointAt, float weight) {
-    GltfBuilder b;
-    const int pos = b.vec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
-    const std::vector<uint8_t> joints(16, 0);
-    const int ja = b.accessor(b.view(joints), kUByte, 4, "VEC4");
-    const int wa = b.vec4({{1, 0, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}});
-    const int skinned =
-        b.mesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", ja}, {"WEIGHTS_0", wa}}},
-                {"indices", b.indices16({0, 1, 2, 0, 2, 3})}});
-    const int lift = b.vec3({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
-    const int morphed = b.push("meshes", {{"primitives",
-                                           {{{"attributes", {{"POSITION", pos}}},
-                                             {"indices", b.indices16({0, 1, 2, 0, 2, 3})},
-                                             {"targets", {{{"POSITION", lift}}}}}}},
-                                          {"weights", {animated ? 0.0f : weight}}});
-    const int joint =
-        b.node({{"name", "joint"}, {"translation", {jointAt.x, jointAt.y, jointAt.z}}});
-    b.push("skins", {{"joints", {joint}}});
-    const int body = b.node({{"mesh", skinned}, {"skin", 0}});
-    const int cube = b.node({{"mesh", morphed}, {"translation", {5, 0, 0}}});
-    b.scene({joint, body, cube});
-    if (animated) {
-      const int times = scalarAccessor(b, {0, 1, 2});
-      const int moves = b.vec3({{0, 0, 0}, {0, 2, 0}, {0, 2, 4}});
-      const int weights = scalarAccessor(b, {0, 1, 0});
-      b.push("animations",
-             {{"name", "act"},
-              {"samplers",
-               {{{"input", times}, {"output", moves}}, {{"input", times}, {"output", weights}}}},
-              {"channels",
-               {{{"sampler", 0}, {"target", {{"node", joint}, {"path", "translation"}}}},
-                {{"sampler", 1}, {"target", {{"node", cube}, {"path", "weights"}}}}}}});
-    }
-    return b;
-  };
   auto posed =
-      build(true, {0, 0, 0}, 0.0f).load(false, {.animation = "act", .animationTime = 1.5f});
-  auto reference = build(false, {0, 2, 2}, 0.5f).load();
+      skinAndMorph(true, {0, 0, 0}, 0.0f).load(false, {.animation = "act", .animationTime = 1.5f});
+  auto reference = skinAndMorph(false, {0, 2, 2}, 0.5f).load();
   ASSERT_TRUE(posed.ok()) << posed.message();
   ASSERT_TRUE(reference.ok()) << reference.message();
   ASSERT_EQ(posed->meshes.size(), reference->meshes.size());
@@ -139,6 +143,56 @@ TEST(SceneAnimation, PosedAtTIsTheFileWhoseRestPoseIsThatPose) {
   }
   expectAt(posed->meshes[0].primitives[0].positions[2], {1, 3, 2}, "skinned vertex on the joint");
   EXPECT_NEAR(posed->meshes[1].primitives[0].positions[0].z, 0.5f, 1e-5f) << "half the lift";
+}
+
+// Playback (LoadOptions::playback): the rig posed at t and the primitives' rest data, morphed by
+// the pose's weights and skinned by its joints as the loader does, give the still loaded at t;
+// a still load keeps neither.
+TEST(SceneAnimation, PlaybackRigPosesAsTheLoaderDoes) {
+  GltfBuilder b = skinAndMorph(true, {0, 0, 0}, 0.0f);
+  auto plain = b.load();
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  EXPECT_FALSE(plain->rig);
+  EXPECT_FALSE(plain->meshes.at(0).primitives.at(0).deformation);
+  auto played = b.load(false, {.playback = true});
+  ASSERT_TRUE(played.ok()) << played.message();
+  ASSERT_TRUE(played->rig);
+  const Rig& rig = *played->rig;
+  ASSERT_EQ(rig.clips.size(), 1u);
+  ASSERT_EQ(rig.meshes.size(), played->meshes.size());
+  ASSERT_EQ(rig.instanceNode.size(), played->instances.size());
+  for (float t : {0.25f, 1.5f, 3.0f}) {
+    auto still = b.load(false, {.animation = "act", .animationTime = t});
+    ASSERT_TRUE(still.ok()) << still.message();
+    const Pose pose = poseRig(rig, 0, t);
+    for (size_t i = 0; i < played->instances.size(); ++i) {
+      for (int c = 0; c < 4; ++c) {
+        expectAt(glm::vec3(pose.instanceWorld[i][c]), glm::vec3(still->instances[i].world[c]),
+                 "instance world");
+      }
+    }
+    for (size_t m = 0; m < played->meshes.size(); ++m) {
+      const Deformation* d = played->meshes[m].primitives.at(0).deformation.get();
+      ASSERT_NE(d, nullptr) << "mesh " << m << " is skinned or morphed";
+      const std::vector<glm::vec3>& expected = still->meshes[m].primitives.at(0).positions;
+      for (size_t v = 0; v < d->positions.size(); ++v) {
+        glm::vec3 p = d->positions[v];
+        const std::vector<float>& w = pose.weights[m];
+        for (size_t k = 0; k < w.size() && k < d->targets.size(); ++k) {
+          if (!d->targets[k].positions.empty()) p += w[k] * d->targets[k].positions[v];
+        }
+        if (rig.meshes[m].skin >= 0) {
+          const auto& joints = pose.joints[static_cast<size_t>(rig.meshes[m].skin)];
+          glm::mat4 s(0.0f);
+          for (int k = 0; k < 4; ++k) {
+            s += d->weights[v][k] * joints[static_cast<size_t>(d->joints[v][k])];
+          }
+          p = glm::vec3(s * glm::vec4(p, 1.0f));
+        }
+        expectAt(p, expected[v], "played vertex");
+      }
+    }
+  }
 }
 
 TEST(SceneAnimation, BadRequestsAndFilesAreOneLineErrors) {

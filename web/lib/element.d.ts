@@ -29,6 +29,10 @@ export interface PenumbraViewerEventMap {
   'refine-progress': CustomEvent<{ frame: number; total: number; totalProgress: number }>;
   /** Once per view (scene, camera, settings that restart). */
   converged: CustomEvent<{ frame: number; total: number; milliseconds: number }>;
+  /** The animation began playing (autoplay or play()), as model-viewer's. */
+  play: CustomEvent<Record<string, never>>;
+  /** The animation paused (pause()). */
+  pause: CustomEvent<Record<string, never>>;
 }
 
 /** The attribute of a setting of the schema (occlusionDistance -> occlusion-distance;
@@ -65,6 +69,17 @@ export declare class PenumbraViewerElement extends HTMLElement {
   /** Vertical, e.g. "45deg", or "auto". */
   fieldOfView: string | null;
   variantName: string | null;
+  /** autoplay: plays animation-name (else the first) from load, looping. */
+  autoplay: boolean;
+  animationName: string | null;
+  /** The model's animations' names. */
+  readonly availableAnimations: string[];
+  /** Seconds into the chosen animation (settable; wraps into [0, duration)). */
+  currentTime: number;
+  readonly duration: number;
+  readonly paused: boolean;
+  play(): void;
+  pause(): void;
   frames: number | 'auto' | null;
 
   addEventListener<K extends keyof PenumbraViewerEventMap>(

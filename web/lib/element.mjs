@@ -13,6 +13,7 @@
 // over the public API: nothing of this is compiled into the wasm module.
 import { Penumbra, PenumbraError } from './penumbra.mjs';
 import { ProgressMeter } from './progress.mjs';
+import { applyAnimationAttributes, defineAnimationApi } from './animation.mjs';
 import { AUTO_ROTATE_DEFAULTS } from './autorotate.mjs';
 import { InteractionPrompt, PROMPT_STYLE, PROMPT_TEMPLATE } from './prompt.mjs';
 
@@ -32,9 +33,7 @@ export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
   ar: 'AR is not supported', 'ar-modes': 'AR is not supported', 'ar-scale': 'AR is not supported',
   'ar-placement': 'AR is not supported', 'ios-src': 'AR is not supported',
   'xr-environment': 'AR is not supported',
-  autoplay: 'animations play only natively for now (penumbra-render --animation NAME --time T)',
-  'animation-name': 'animations play only natively for now (penumbra-render --animation NAME --time T)',
-  'animation-crossfade-duration': 'animations play only natively for now',
+  'animation-crossfade-duration': 'a new animation starts at once (no crossfade)',
   'shadow-softness': 'the ground shadow is as soft as the environment\'s light makes it (shadow-intensity)',
   'skybox-height': 'the skybox is infinitely far (no ground projection)',
   'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',
@@ -195,7 +194,7 @@ export class PenumbraViewerElement extends HTMLElement {
   #resetApplied() {
     // null: nothing set by the element (the scene's own or the API's default is in effect).
     this.#applied = { settings: new Map(), environment: null, skybox: null, src: null,
-                      camera: null, variant: null, autoRotate: null };
+                      camera: null, variant: null, autoRotate: null, animation: null };
   }
 
   // Attribute changes arrive in batches (MutationObserver); one pass applies them all.
@@ -244,6 +243,8 @@ export class PenumbraViewerElement extends HTMLElement {
     const loaded = await this.#applySrc(v);
     if (this.loaded) {
       this.#applyVariant(v);
+      const bad = applyAnimationAttributes(this, v.animation, this.#applied);
+      if (bad) this.#fail('attribute', new PenumbraError(bad));
       await this.#applyCamera(v);
     }
     this.#applyAutoRotate(v);
@@ -394,6 +395,7 @@ export class PenumbraViewerElement extends HTMLElement {
     this.#applied.camera = null;  // camera-* and variant-name apply to the new scene
     this.#cameraSet = false;
     this.#applied.variant = null;
+    this.#applied.animation = null;
     this.#variantSet = false;
     // A scene file brings its own environment: environment-image, when given, replaces it.
     if (info.sceneFile && this.#applied.environment !== null) {
@@ -552,7 +554,7 @@ export class PenumbraViewerElement extends HTMLElement {
 // Properties that reflect attributes, as model-viewer's do: el.src = 'x.glb', el.exposure = 1.
 const STRINGS = ['src', 'alt', 'poster', 'reveal', 'loading', 'environmentImage', 'skyboxImage',
                  'toneMapping',
-                 'cameraOrbit', 'cameraTarget', 'fieldOfView', 'variantName'];
+                 'cameraOrbit', 'cameraTarget', 'fieldOfView', 'variantName', 'animationName'];
 for (const prop of STRINGS) {
   const attr = settingAttribute(prop);
   Object.defineProperty(PenumbraViewerElement.prototype, prop, {
@@ -560,7 +562,8 @@ for (const prop of STRINGS) {
     set(v) { if (v === null || v === undefined) this.removeAttribute(attr); else this.setAttribute(attr, String(v)); },
   });
 }
-for (const [prop, attr] of [['cameraControls', 'camera-controls'], ['autoRotate', 'auto-rotate']]) {
+for (const [prop, attr] of [['cameraControls', 'camera-controls'], ['autoRotate', 'auto-rotate'],
+                            ['autoplay', 'autoplay']]) {
   Object.defineProperty(PenumbraViewerElement.prototype, prop, {
     get() { return this.hasAttribute(attr); },
     set(v) { this.toggleAttribute(attr, Boolean(v)); },
@@ -575,6 +578,8 @@ for (const prop of ['exposure', 'frames']) {
     set(v) { if (v === null || v === undefined) this.removeAttribute(prop); else this.setAttribute(prop, String(v)); },
   });
 }
+
+defineAnimationApi(PenumbraViewerElement.prototype);
 
 if (!customElements.get('penumbra-viewer')) {
   customElements.define('penumbra-viewer', PenumbraViewerElement);

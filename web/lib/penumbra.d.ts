@@ -144,6 +144,27 @@ export interface SceneInfo {
   warnings: string[];
   bounds: Bounds;
   environment: string;
+  /** The file's glTF animations, in its order. */
+  animations: { name: string; duration: number }[];
+}
+
+/** viewer.animation (animation.mjs): the loaded model's animations played on the GPU. */
+export interface AnimationPlayer {
+  readonly animations: { name: string; duration: number }[];
+  /** The chosen animation's index (-1: none, the rest pose). */
+  readonly index: number;
+  /** Seconds into it. */
+  readonly time: number;
+  readonly playing: boolean;
+  readonly duration: number;
+  /** By name or index; null: the first. Throws naming the model's animations. */
+  select(name: string | number | null): number;
+  play(): boolean;
+  pause(): void;
+  /** Wraps into [0, duration). */
+  seek(seconds: number): void;
+  /** The rest pose: no animation chosen. */
+  rest(): void;
 }
 
 export interface CameraSpec {
@@ -288,6 +309,8 @@ export declare class Viewer {
    * 'default' for the primitives' own materials. Restarts the view. Returns the variant shown.
    */
   setVariant(name: string | number | null): string | null;
+  /** The loaded model's animations (autoplay, animation-name and play() of the element). */
+  readonly animation: AnimationPlayer;
   /** A look-at camera, or 'reset' for the scene's own camera. */
   setCamera(camera: CameraSpec | 'reset'): Promise<void>;
   /** Auto-rotate (model-viewer's defaults: pi/32 rad a second after 3000 ms left alone): the view turns about the target's vertical axis; an interaction restarts the delay. */

@@ -5,21 +5,19 @@
 //   await viewer.loadScene('assets/cornell_box/cornell_box.json');
 //   viewer.on('progress', ({ frame, total }) => ...);
 //
-// The wasm module (penumbra_viewer.js/.wasm, the same C++ and GLSL as the native renderer)
-// draws cheap intermediate frames and accumulates them. This file owns the frame loop: on each
-// requestAnimationFrame it draws as many frames, or parts of a slow frame, as fit the time
-// budget, timing each with a 1-pixel read-back (glFinish does not block in WebGL), then
-// tone-maps the accumulation into the canvas. A camera change restarts at frame 1; adapt.mjs
-// chooses the resolution (lower while moving) and the split from measured costs.
-//
-// Every method that can fail returns a promise that rejects with a PenumbraError whose message
-// is the one-line C++ message; nothing throws out of the frame loop or the event handlers
-// (failures there go to the 'error' event). docs/web/api.md documents the API.
+// The wasm module (the native renderer's C++ and GLSL) draws cheap intermediate frames and
+// accumulates them. This file owns the frame loop: each requestAnimationFrame draws as many
+// frames, or parts of one, as fit the time budget (timed by a 1-pixel read-back), then
+// tone-maps into the canvas. A camera change or a played pose restarts at frame 1; adapt.mjs
+// chooses the resolution (lower while moving) and the split from measured costs. Methods that
+// can fail reject with a PenumbraError (the one-line C++ message); the frame loop and handlers
+// never throw ('error' event). docs/web/api.md documents the API.
 import { ADAPT_DEFAULTS, Adaptation, JS_SCHEMA, effectivePixelRatio, splitSettings } from './adapt.mjs';
 import { provideDecoders } from './decoders.mjs';
 import { Emitter, WasmSession } from './session.mjs';
 import { OrbitCamera, attachOrbitControls, cameraFromOptions } from './orbit.mjs';
 import { FrameLoop, drawParts } from './loop.mjs';
+import { AnimationPlayer } from './animation.mjs';
 import { AutoRotate } from './autorotate.mjs';
 import { DownloadProgress, PenumbraError, fetchBytes, gatherScene, sourceName, toBytes }
   from './staging.mjs';
@@ -35,12 +33,10 @@ const DEFAULTS = {
   autoResize: true,      // keep the canvas's drawing buffer at its CSS size x pixelRatio
   pixelRatio: undefined, // default: min(devicePixelRatio, maxPixelRatio)
 };
-// The renderer's settings come from the settings schema in the wasm module (one table in C++,
-// penumbra/settings.h); JS_SCHEMA (adapt.mjs) holds the JS side's own.
+// The renderer's settings come from the wasm module's schema (penumbra/settings.h); JS_SCHEMA
+// (adapt.mjs) holds the JS side's own.
 const JS_SETTINGS = new Set(JS_SCHEMA.map((e) => e.key));
-
-// The device-pixel stage begins this long after the first stop (#device).
-const DEVICE_STAGE_DELAY_MS = 1000;
+const DEVICE_STAGE_DELAY_MS = 1000;  // the device-pixel stage begins this long after the stop
 
 export class Viewer {
   #s; #pv; #canvas; #opts; #events = new Emitter();  // session.mjs
@@ -49,6 +45,7 @@ export class Viewer {
   #jsSettings;                 // budgetMs, resolutionScale, adaptiveResolution, maxSplit
   #orbit = null; #controls = null; #cameraDirty = false; #lastChange = -Infinity;
   #autoRotate = new AutoRotate();  // autorotate.mjs: turns the orbit once left alone
+  #player = new AnimationPlayer(() => this.#loop?.wake());  // animation.mjs: the model's clips
   #cameraSource = 'user-interaction';  // what moved the orbit last: the controls or auto-rotate
   // The second stage of a still view (devicePixels): done below the drawing buffer's pixels
   // (a phone's CSS size), it renders again at them, out of sight until done (issue #59).
@@ -185,7 +182,7 @@ export class Viewer {
     this.#sceneInfo = { name: main.name, sceneFile: info.sceneFile,
                         triangles: info.triangles, lights: info.lights,
                         cameras: info.cameras, variants: info.variants, variant: info.variant,
-                        warnings: info.warnings, bounds: info.bounds,
+                        warnings: info.warnings, bounds: info.bounds, animations: info.animations,
                         environment: info.environment };
     for (const w of info.warnings || []) {
       console.warn(`[penumbra] ${w.startsWith(main.name) ? w : `${main.name}: ${w}`}`);
@@ -194,14 +191,14 @@ export class Viewer {
     this.#s.call('pv_set_settings', JSON.stringify(this.#overrides));
     this.#orbit = OrbitCamera.fromCamera(info.camera, info.bounds);
     this.#cameraDirty = false;
+    this.#player.reset(info.animations);
     this.#adapt.reset();  // another scene costs differently: measure again
     this.#restarted();
     return this.#sceneInfo;
   }
 
-  // KHR_materials_variants: shows the loaded scene's variant `name` (a name from
-  // info.scene.variants, or its index; null or 'default' for the primitives' own materials).
-  // Restarts the view; the geometry stays on the GPU.
+  // KHR_materials_variants: shows variant `name` (of info.scene.variants, or its index; null or
+  // 'default': the primitives' own materials). Restarts the view; the geometry stays.
   setVariant(name) {
     this.#check();
     const state = this.#s.call('pv_set_variant', name === null || name === undefined ? '' : String(name));
@@ -231,6 +228,10 @@ export class Viewer {
     await this.#s.setSkybox(source ?? null, name, () => this.#check());
     this.#restarted();
   }
+
+  // The loaded model's animations (animation.mjs): .animations, .select(name), .play(),
+  // .pause(), .seek(seconds), .time, .playing, .duration; posed on the GPU each frame it plays.
+  get animation() { return this.#player; }
 
   // Auto-rotate: {enabled, speed (radians a second), delayMs} (autorotate.mjs; model-viewer's
   // defaults). The view turns once left alone for delayMs; an interaction restarts the delay.
@@ -285,15 +286,10 @@ export class Viewer {
   }
 
   // Stops drawing (an off-screen or hidden view) until resume(); what accumulated stays, and
-  // changes made meanwhile apply on resume.
+  // changes made meanwhile apply on resume. restart(): accumulation from frame 1.
   pause() { this.#loop.pause(); }
   resume() { this.#loop.resume(); }
-
-  // Restarts accumulation at frame 1.
-  restart() {
-    if (this.#usable()) { this.#pv.pv_restart(); this.#restarted(); }
-  }
-
+  restart() { if (this.#usable()) { this.#pv.pv_restart(); this.#restarted(); } }
   on(event, handler) { return this.#events.on(event, handler); }
   off(event, handler) { this.#events.off(event, handler); }
 
@@ -465,7 +461,7 @@ export class Viewer {
     this.#frame();
     // Auto-rotate keeps the loop awake while it waits for its delay and while it turns.
     return !(this.#stats.converged && !this.#needsPresent && !this.#cameraDirty &&
-             !this.#isMoving(performance.now()) && !this.#autoRotate.enabled &&
+             !this.#isMoving(performance.now()) && !this.#autoRotate.enabled && !this.#player.playing &&
              !(this.#device.stage && !this.#device.done) && !this.#device.pendingAt);
   };
 
@@ -476,6 +472,12 @@ export class Viewer {
       this.#cameraSource = 'automatic';
       this.#cameraDirty = true;
       this.#lastChange = now;  // a turning view is a moving one
+    }
+    const pose = this.#sceneInfo && this.#player.advance(now);
+    if (pose) {
+      this.#s.call('pv_set_pose', ...pose);
+      if (this.#player.playing) this.#lastChange = now;  // a playing animation is a moving view
+      this.#restarted();
     }
     const moving = this.#isMoving(now);
     const js = this.#jsSettings;
@@ -570,8 +572,7 @@ export class Viewer {
   // Bands for the next frame to begin (adapt.mjs: predicted cost / budget, at most maxSplit;
   // frame 1 whole while moving). Set in wasm only when it changes.
   #setTiles(moving) {
-    const [w, h] = this.#renderSize;
-    const k = this.#adapt.tiles(this.#jsSettings, w * h,
+    const k = this.#adapt.tiles(this.#jsSettings, this.#renderSize[0] * this.#renderSize[1],
                                 { moving, frameOne: this.#pv.pv_frames_done() === 0 });
     if (k !== this.#tiles) this.#tiles = this.#pv.pv_set_tiles(k);
     this.#stats.split = this.#tiles;

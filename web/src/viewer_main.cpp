@@ -85,6 +85,11 @@ json stateJson(const Viewer& v) {
     j["cameras"] = names;
     j["lights"] = v.scene->lights.size();
     j["variants"] = v.scene->variants;
+    json animations = json::array();
+    for (const Scene::Animation& a : v.scene->animations) {
+      animations.push_back({{"name", a.name}, {"duration", a.duration}});
+    }
+    j["animations"] = animations;
     j["variant"] =
         v.variant >= 0 ? json(v.scene->variants[static_cast<size_t>(v.variant)]) : json(nullptr);
   }
@@ -108,6 +113,7 @@ Status buildGpuState(Viewer& v) {
   if (v.scene) {
     PN_TRY(v.renderer->setScene(*v.scene));
     PN_TRY(v.renderer->setVariant(v.variant));
+    if (v.animation >= 0) PN_TRY(v.renderer->setPose(v.animation, v.animationTime));
   }
   v.renderer->setCamera(v.camera);
   return {};
@@ -152,6 +158,7 @@ json loadScene(Viewer& v, const std::string& path) {
   // wasm32 memory tops out at 2 GiB; textures are kept up to what the device takes.
   request.memoryBudgetBytes = int64_t{768} << 20;
   request.maxTextureSize = std::max(1, v.renderer->maxTextureSize());
+  request.playback = true;  // the element plays animations (Renderer::setPose)
   request.panorama = panoramaOptions(-1.0f);  // the scene's settings decide the sun
   if (keepEnvironment) request.environment = EnvironmentSpec{.kind = EnvironmentSpec::Kind::None};
   auto job = RenderJob::load(request);
@@ -175,6 +182,8 @@ json loadScene(Viewer& v, const std::string& path) {
   r.setCamera(job->camera);
   v.settings = job->settings;
   v.variant = job->variant;
+  v.animation = -1;
+  v.animationTime = 0.0f;
   v.scene = std::move(job->scene);
   v.sceneCamera = job->camera;
   v.camera = job->camera;
@@ -297,6 +306,20 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_variant(const char* nameOrIndex) {
     if (auto st = (*v)->renderer->setVariant(*index); !st) return errorJson(st.message());
     (*v)->variant = *index;
     return stateJson(**v);
+  });
+}
+
+// Playback: poses the scene at `time` seconds of animation `index` (-1: the rest pose) on the
+// GPU; restarts accumulation (a playing animation is a moving view).
+EMSCRIPTEN_KEEPALIVE const char* pv_set_pose(int index, float time) {
+  return guarded([&]() -> json {
+    auto v = viewer();
+    if (!v) return errorJson(v.message());
+    if (!(*v)->scene) return errorJson("setPose: no scene loaded");
+    if (auto st = (*v)->renderer->setPose(index, time); !st) return errorJson(st.message());
+    (*v)->animation = index;
+    (*v)->animationTime = time;
+    return json{{"animation", index}, {"time", time}};
   });
 }
 

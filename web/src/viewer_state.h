@@ -37,6 +37,10 @@ struct Viewer {
   std::unique_ptr<Renderer> renderer;
   RenderSettings settings;
   std::optional<Scene> scene;
+  // Playback's pose (Renderer::setPose): the animation (-1: none, the rest pose) and its time,
+  // put back after a lost context.
+  int animation = -1;
+  float animationTime = 0.0f;
   int variant = -1;    // KHR_materials_variants: the one shown (-1: the default materials)
   Camera sceneCamera;  // the loaded scene's own camera, for reset
   Camera camera;       // the camera in use

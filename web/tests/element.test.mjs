@@ -52,16 +52,6 @@ const PAGE = `<!doctype html><meta charset="utf-8"><title>penumbra-viewer test</
     parent.append(el);
     return el;
   };
-  // The displayed canvas (the context keeps its drawing buffer) as RGBA bytes.
-  window.shot = (el) => {
-    const c = el.shadowRoot.querySelector('canvas');
-    const t = document.createElement('canvas');
-    t.width = c.width;
-    t.height = c.height;
-    const ctx = t.getContext('2d');
-    ctx.drawImage(c, 0, 0);
-    return { width: t.width, height: t.height, data: [...ctx.getImageData(0, 0, t.width, t.height).data] };
-  };
   window.frames = (n) => new Promise((ok) => {
     const next = () => (n-- <= 0 ? ok() : requestAnimationFrame(next));
     requestAnimationFrame(next);
@@ -137,7 +127,8 @@ async function waitConverged(pg, selector, count) {
   return log;
 }
 
-const shot = (pg, selector) => pg.evaluate((s) => window.shot(document.querySelector(s)), selector);
+// The displayed canvas (the context keeps its drawing buffer) as RGBA bytes.
+const shot = (pg, selector) => pixels(pg, null, selector);
 
 // What the page shows where an element is (the page behind a transparent canvas included): a
 // screenshot of its box, decoded in the page.

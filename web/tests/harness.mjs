@@ -6,7 +6,7 @@ import { spawnSync } from 'node:child_process';
 import { createServer } from 'node:http';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { extname, join, normalize, resolve, sep } from 'node:path';
+import { extname, isAbsolute, join, normalize, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 
@@ -123,9 +123,11 @@ export async function withPage(options, fn) {
   }
 }
 
-// RGBA bytes of the canvas (or of an image URL), decoded by the browser.
-export const pixels = (pg, url) => pg.evaluate(async (src) => {
-  let source = document.getElementById('canvas');
+// RGBA bytes of the canvas (or of an image URL, or, with `element`, of the canvas in the shadow
+// root of the element that selector names: a <penumbra-viewer>), decoded by the browser.
+export const pixels = (pg, url, element) => pg.evaluate(async ([src, sel]) => {
+  let source = sel ? document.querySelector(sel).shadowRoot.querySelector('canvas')
+    : document.getElementById('canvas');
   if (src) {
     source = new Image();
     source.src = src;
@@ -137,7 +139,7 @@ export const pixels = (pg, url) => pg.evaluate(async (src) => {
   const ctx = c.getContext('2d');
   ctx.drawImage(source, 0, 0);
   return { width: c.width, height: c.height, data: [...ctx.getImageData(0, 0, c.width, c.height).data] };
-}, url || null);
+}, [url || null, element || null]);
 
 // Mean, max and 99th percentile of |a - b| over R, G, B, in [0, 1].
 export function diff(a, b) {
@@ -188,8 +190,9 @@ function newestSource(dirs) {
 
 // The native render of a scene file (path relative to the repository) as {path, source}: made
 // now by penumbra-render when it is built and not older than the renderer sources, else
-// `golden` (a committed PNG; null when there is none). Notes go to `log`.
-export function nativeRender(scene, width, height, frames, outName, golden, log) {
+// `golden` (a committed PNG; null when there is none). Notes go to `log`; `args`: more of the
+// CLI's flags (e.g. --animation, --time); an absolute `scene` is taken as it is.
+export function nativeRender(scene, width, height, frames, outName, golden, log, args = []) {
   const out = join(outDir, outName);
   rmSync(out, { force: true });
   // A CLI older than the renderer sources would compare different code: use the golden then.
@@ -197,8 +200,9 @@ export function nativeRender(scene, width, height, frames, outName, golden, log)
   if (existsSync(NATIVE_BIN) && statSync(NATIVE_BIN).mtimeMs < newest) {
     log.push(`[native] ${NATIVE_BIN} is older than the renderer sources: using the golden`);
   } else if (existsSync(NATIVE_BIN)) {
-    const r = spawnSync(NATIVE_BIN, [join(root, scene), '-o', out, '--size', `${width}x${height}`,
-                                     '--frames', String(frames), '-q'],
+    const file = isAbsolute(scene) ? scene : join(root, scene);
+    const r = spawnSync(NATIVE_BIN, [file, '-o', out, '--size', `${width}x${height}`,
+                                     '--frames', String(frames), '-q', ...args],
                         { env: { ...process.env, MESA_GLES_VERSION_OVERRIDE: '3.0' },
                           timeout: 60_000, encoding: 'utf8' });
     if (r.status === 0 && existsSync(out)) return { path: out, source: `${NATIVE_BIN} (this run)` };

@@ -66,7 +66,11 @@ function statusLine(s) {
 
 function renderProgress(viewer) {
   const s = viewer.state;
-  const status = statusLine(s);
+  // A playing animation shows each pose's first frame: there is nothing to refine meanwhile.
+  const a = viewer.animation;
+  const clip = a.playing ? a.animations[a.index] : null;
+  const status = clip ? `Playing ${clip.name || `animation ${a.index}`} · ${a.time.toFixed(1)} s`
+    : statusLine(s);
   const word = status.split(/[ :]/)[0];
   if (page.statusWords.at(-1) !== word && page.statusWords.length < 50) page.statusWords.push(word);
   $('progress').textContent = status;
@@ -128,6 +132,21 @@ function wirePanel(viewer) {
       showError(err);
       fillVariants(viewer);
     }
+  });
+  // Animations (animation.mjs): choosing one shows its pose at 0 s; the button plays or pauses.
+  $('animation').addEventListener('change', (e) => {
+    const a = viewer.animation;
+    try {
+      if (e.target.value === '') a.rest(); else a.select(Number(e.target.value));
+    } catch (err) {
+      showError(err);
+    }
+    fillAnimations(viewer);
+  });
+  $('animation-play').addEventListener('click', () => {
+    const a = viewer.animation;
+    if (a.playing) a.pause(); else a.play();
+    fillAnimations(viewer);
   });
   const toggle = $('toggle-panel');
   const setVisible = (v) => {
@@ -193,6 +212,19 @@ function fillVariants(viewer) {
   $('variant-row').hidden = names.length === 0;
 }
 
+// The panel's animation picker and play button: shown only for a model that has animations.
+function fillAnimations(viewer) {
+  const a = viewer.animation;
+  const select = $('animation');
+  select.replaceChildren(select.options[0]);
+  a.animations.forEach((clip, i) => select.add(new Option(clip.name || `animation ${i}`, String(i))));
+  select.value = a.index >= 0 ? String(a.index) : '';
+  const play = $('animation-play');
+  play.textContent = a.playing ? 'Pause' : 'Play';
+  play.setAttribute('aria-pressed', String(a.playing));
+  $('animation-row').hidden = a.animations.length === 0;
+}
+
 async function loadScene(viewer, source, options) {
   const name = typeof source === 'string' ? source.split(/[?#]/)[0].split('/').pop()
                                           : source?.name || 'the scene';
@@ -206,6 +238,7 @@ async function loadScene(viewer, source, options) {
   page.sceneName = info.name;
   fillPanel(viewer.settings);
   fillVariants(viewer);
+  fillAnimations(viewer);
   document.title = `${info.name} — Penumbra viewer`;
   // A good load clears the notes of earlier failures: the problem they named is gone.
   for (const note of [...$('messages').querySelectorAll('.message.error')]) note.remove();
@@ -329,6 +362,12 @@ async function main() {
     if (query.get('variant')) {
       viewer.setVariant(query.get('variant'));
       fillVariants(viewer);
+    }
+    // ?animation=NAME: plays that animation (as the element's autoplay and animation-name).
+    if (query.get('animation')) {
+      viewer.animation.select(query.get('animation'));
+      viewer.animation.play();
+      fillAnimations(viewer);
     }
   } catch (e) {
     showError(e);

@@ -74,6 +74,10 @@ struct Pose {
   std::vector<std::vector<float>> weights;     // per Scene mesh (empty: no morph targets)
 };
 
+// A node's local matrix from its translation, rotation and scale (glTF 3.5.3: T * R * S).
+glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation,
+                     const glm::vec3& scale);
+
 // The pose at `time` seconds of clip `animation` (-1: the rest pose).
 Pose poseRig(const Rig& rig, int animation, float time);
 

@@ -58,6 +58,8 @@ struct JobRequest {
   // A glTF animation (name or index) and the time (s) to pose it at; over the scene file's.
   std::string animation;
   std::optional<float> time;
+  // Keep what plays the animations back (LoadOptions::playback): a viewer's Renderer::setPose.
+  bool playback = false;
   std::optional<EnvironmentSpec> environment;  // replaces the scene file's
   int64_t memoryBudgetBytes = int64_t{2} << 30;
   int maxTextureSize = 4096;

@@ -147,6 +147,7 @@ Result<RenderJob> RenderJob::load(const JobRequest& request) {
   LoadOptions lo;
   lo.memoryBudgetBytes = request.memoryBudgetBytes;
   lo.maxTextureSize = request.maxTextureSize;
+  lo.playback = request.playback;
   lo.animation = !request.animation.empty() ? request.animation : job.sceneFile.animation;
   const std::optional<float> time = request.time ? request.time : job.sceneFile.time;
   if (lo.animation.empty() && time) lo.animation.assign(1, '0');  // a time alone: the first one

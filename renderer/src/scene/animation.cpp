@@ -64,19 +64,15 @@ std::vector<float> AnimationCurve::sample(float time) const {
   return out;
 }
 
-namespace {
-
-glm::mat4 localMatrix(const Rig::Node& n) {
-  if (n.hasMatrix) return n.matrix;
-  glm::mat4 local = glm::mat4_cast(n.rotation);
-  local[0] *= n.scale.x;
-  local[1] *= n.scale.y;
-  local[2] *= n.scale.z;
-  local[3] = glm::vec4(n.translation, 1.0f);
+glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation,
+                     const glm::vec3& scale) {
+  glm::mat4 local = glm::mat4_cast(rotation);
+  local[0] *= scale.x;
+  local[1] *= scale.y;
+  local[2] *= scale.z;
+  local[3] = glm::vec4(translation, 1.0f);
   return local;
 }
-
-}  // namespace
 
 Pose poseRig(const Rig& rig, int animation, float time) {
   std::vector<Rig::Node> nodes = rig.nodes;
@@ -104,7 +100,9 @@ Pose poseRig(const Rig& rig, int animation, float time) {
     for (auto c = chain.rbegin(); c != chain.rend(); ++c) {
       const int up = nodes[static_cast<size_t>(*c)].parent;
       const glm::mat4 base = up >= 0 ? world[static_cast<size_t>(up)] : glm::mat4(1.0f);
-      world[static_cast<size_t>(*c)] = base * localMatrix(nodes[static_cast<size_t>(*c)]);
+      const Rig::Node& n = nodes[static_cast<size_t>(*c)];
+      world[static_cast<size_t>(*c)] =
+          base * (n.hasMatrix ? n.matrix : composeTrs(n.translation, n.rotation, n.scale));
       done[static_cast<size_t>(*c)] = true;
     }
   }

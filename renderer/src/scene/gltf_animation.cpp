@@ -151,12 +151,7 @@ void poseAnimation(Document& doc, const std::vector<AnimationCurve>& clip, float
 }
 
 glm::mat4 composeTrs(const NodeDesc& n) {
-  glm::mat4 local = glm::mat4_cast(n.rotation);
-  local[0] *= n.scale.x;
-  local[1] *= n.scale.y;
-  local[2] *= n.scale.z;
-  local[3] = glm::vec4(n.translation, 1.0f);
-  return local;
+  return penumbra::composeTrs(n.translation, n.rotation, n.scale);
 }
 
 }  // namespace penumbra::gltf
