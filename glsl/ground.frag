@@ -2,8 +2,9 @@
 // white Lambertian plane under the scene, which shows only what the scene takes from its light.
 // Each frame it shades itself with the batch's terms both as lit (the environment's irradiance
 // with this frame's sky-shadow sample, the punctual lights with their shadows) and unshadowed,
-// in luminance. The unshadowed light is the same every frame, so the ratio's mean over frames
-// is the visible share of the light. The frame behind it (the background, or nothing with a
+// in luminance, a blocked sky direction lit by the blocker's radiance instead where the probe
+// volume is on. The unshadowed light is the same every frame, so the ratio's mean over frames
+// is the share of the light the ground keeps. The frame behind it (the background, or nothing with a
 // transparent background) is multiplied by 1 - intensity (1 - ratio) (gl::Blend::Multiply),
 // and with a transparent background alpha gets intensity (1 - ratio): a shadow over the page. Area lights are not caught (their
 // batches do not draw the ground).
@@ -32,7 +33,24 @@ void punctualGround(inout float lit, inout float open) {
     float e = luminance(uPunctualColor[i]) * attenuation * NoL * INV_PI;
     float visibility = punctualVisibility(i, kind, vWorldPos, n);
     if (kind == PN_SAMPLE_SKY_SHADOW) {
-      lit += e * (visibility - 1.0);  // its colour is the sky's radiance over its density
+      // Its colour is the sky's radiance over its density: what the blocker takes away.
+      float lost = e * (1.0 - visibility);
+#if PN_PROBES
+      // A catcher receives the blocker's light instead (Cycles' does: a white sphere's shadow
+      // is half as dark as a black one's), in the ratio of their radiances in that direction:
+      // the probes' radiance of the geometry they see toward it. The probes do not see the
+      // ground, so light it sends back up and receives again is left out.
+      // (Only where it is blocked: most of the ground is not, and skips the probes' lookups.)
+      if (visibility < 1.0) {
+        float sky = luminance(envRadiance(l, 0.0));
+        vec4 blocker = probeGeometryToward(vWorldPos, n, viewDirection(), l);
+        // At most the sky's own light: a body lit by this environment (without a ground)
+        // sends less toward the ground than the sky it hides, and a dim sky direction's ratio
+        // would otherwise be a firefly.
+        if (sky > 0.0) lost *= 1.0 - blocker.a * min(luminance(blocker.rgb) / sky, 1.0);
+      }
+#endif
+      lit -= lost;
     } else {
       lit += e * visibility;
       open += e;

@@ -1,7 +1,8 @@
 // Animation playback (Renderer::setPose): a scene loaded for playback and posed on the GPU at
 // time t renders as the still the loader poses on the CPU at t (LoadOptions::animation), for a
 // skinned strip, a morphed quad and an animated node at three times, and for the sample
-// models Fox (skin) and AnimatedMorphCube (morph targets) where ../shared has them. A pose is a
+// models Fox (skin), CesiumMan (Draco skin), AnimatedMorphCube and MorphStressTest (morph
+// targets) where ../shared has them. A pose is a
 // function of the time alone, whatever was posed before.
 #include <cstring>
 #include <filesystem>
@@ -187,6 +188,18 @@ TEST_F(AnimationGLTest, FoxSkinMatchesTheCpuPoseAtThreeTimes) {
 TEST_F(AnimationGLTest, MorphCubeMatchesTheCpuPoseAtThreeTimes) {
   expectSampleModel("AnimatedMorphCube_Quantized", "AnimatedMorphCube.gltf", {1.6f, 1.2f, 2.2f},
                     {0.5f, 1.2f, 2.5f}, "animation_morph_cube");
+}
+
+// Draco-compressed joints and weights, a textured skin.
+TEST_F(AnimationGLTest, DracoCesiumManMatchesTheCpuPoseAtThreeTimes) {
+  expectSampleModel("CesiumMan_Draco", "CesiumMan.gltf", {0.3f, 0.4f, 2.4f}, {0.4f, 1.1f, 1.8f},
+                    "animation_cesium_man");
+}
+
+// Eight morph targets (MorphStressTest: its animation drives them all).
+TEST_F(AnimationGLTest, MorphStressTestMatchesTheCpuPoseAtThreeTimes) {
+  expectSampleModel("MorphStressTest", "MorphStressTest.glb", {0.2f, 1.2f, 2.2f},
+                    {0.5f, 1.5f, 2.5f}, "animation_morph_stress");
 }
 
 TEST_F(AnimationGLTest, BadPosesAreOneLineErrors) {

@@ -7,7 +7,8 @@ white sky, seen from GroundShadowGLTest's camera (Penumbra's y-up (x, y, z) is B
 (x, -z, y)). Prints the catcher's alpha (the darkening) at ground points at distance d from the
 sphere's foot, beside the analytic share of the sky the sphere hides, (d^2 + 1)^-3/2. Cycles'
 catcher also counts the light the sphere reflects onto the ground, which Penumbra's ground
-leaves out: --albedo 0 (a black sphere) compares the shadows alone.
+leaves out: --albedo 0 (a black sphere) compares the shadows alone. The catcher is white
+(--catcher-albedo 1) and the sphere glTF's default dielectric, as in Penumbra's test.
 """
 import argparse
 import math
@@ -24,6 +25,8 @@ def args():
     ap.add_argument("--samples", type=int, default=1024)
     ap.add_argument("--size", default="192x144")
     ap.add_argument("--albedo", type=float, default=0.5, help="the sphere's (0: no bounce)")
+    ap.add_argument("--catcher-albedo", type=float, default=1.0,
+                    help="the catcher's (Penumbra's ground is white; Blender's default 0.8)")
     return ap.parse_args(argv)
 
 
@@ -50,10 +53,19 @@ def main():
     mat = bpy.data.materials.new("grey")
     mat.use_nodes = True
     mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (a.albedo,) * 3 + (1,)
-    mat.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
+    # lambert() of the test: glTF's dielectric (F0 0.04: Specular 0.5), roughness 1.
+    mat.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.5
+    mat.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 1.0
     sphere.data.materials.append(mat)
     bpy.ops.mesh.primitive_plane_add(size=40.0, location=(0, 0, 0))
     bpy.context.object.is_shadow_catcher = True
+    ground = bpy.data.materials.new("catcher")
+    ground.use_nodes = True
+    ground.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = \
+        (a.catcher_albedo,) * 3 + (1,)
+    ground.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
+    ground.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 1.0
+    bpy.context.object.data.materials.append(ground)
     cam_data = bpy.data.cameras.new("cam")
     cam_data.sensor_fit = "VERTICAL"
     cam_data.angle = math.radians(40.0)
@@ -79,6 +91,14 @@ def main():
                 n += 1
         return s / n
 
+    # The shadow region GroundShadowGLTest averages over: rings d = 1.1..2.0 from the sphere's
+    # foot, at angles 0..180 degrees on the camera's side (Penumbra's (d cos a, 0, d sin a)).
+    region = [(d * math.cos(math.radians(t)), 0.0, d * math.sin(math.radians(t)))
+              for d in (1.1, 1.2, 1.4, 1.6, 2.0) for t in (0, 45, 90, 135, 180)]
+    # Penumbra's (x, y, z) is Blender's (x, -z, y).
+    mean = sum(alpha((x, -z, y)) for x, y, z in region) / len(region)
+    print("ground-shadow: albedo %.2f region mean darkening %.4f over %d points" %
+          (a.albedo, mean, len(region)))
     for d in (1.2, 1.6, 2.4):
         # GroundShadowGLTest's points: (d, 0, 0) and (-d, 0, 0) in Penumbra's frame.
         got = 0.5 * (alpha((d, 0.0, 0.0)) + alpha((-d, 0.0, 0.0)))

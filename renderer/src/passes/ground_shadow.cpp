@@ -15,7 +15,8 @@ Status LightingPass::drawGround(const LightingBatch& b, const glm::mat3& envRota
   const Bounds& box = b.scene->bounds();
   if (!box.valid()) return {};
   LightingVariant v = variant(b, false, false, !b.punctual.empty());
-  v.probes = v.probeCache = v.lightCache = v.accumulate = 0;
+  // The probes (when on and filled) give the light the scene reflects onto the ground.
+  v.probeCache = v.lightCache = v.accumulate = 0;
   const ProgramKey key(v, MaterialFeatures{});
   gl::Program*& p = groundPrograms_[key.key()];
   if (!p) {

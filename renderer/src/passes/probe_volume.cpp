@@ -68,17 +68,22 @@ Result<ProbeVolume> ProbeVolume::create(gl::ShaderLibrary& library) {
 }
 
 Status ProbeVolume::reset(const progressive::ProbeGrid& grid, bool relocate) {
+  // A grid of the same shape keeps the atlas (a played animation moves the grid every pose).
+  const bool sameAtlas = atlas_ && !grid.empty() && grid.columns() == grid_.columns() &&
+                         grid.rows() == grid_.rows();
   grid_ = grid;
-  atlas_ = {};
-  if (grid_.empty()) return {};
-  const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
-  auto tex = atlas(layout.size.x, layout.size.y);
-  if (!tex) return makeError("probe volume: " + tex.message());
-  atlas_ = std::move(*tex);
-  atlasFb_ = gl::Framebuffer::create();
-  atlasFb_.attachColor(0, atlas_);
-  atlasFb_.setDrawBuffers(1);
-  PN_TRY(atlasFb_.checkComplete());
+  if (!sameAtlas) {
+    atlas_ = {};
+    if (grid_.empty()) return {};
+    const ProbeAtlasLayout layout = atlasLayout(grid_.columns(), grid_.rows());
+    auto tex = atlas(layout.size.x, layout.size.y);
+    if (!tex) return makeError("probe volume: " + tex.message());
+    atlas_ = std::move(*tex);
+    atlasFb_ = gl::Framebuffer::create();
+    atlasFb_.attachColor(0, atlas_);
+    atlasFb_.setDrawBuffers(1);
+    PN_TRY(atlasFb_.checkComplete());
+  }
   offsets_.assign(static_cast<size_t>(grid_.count()), glm::vec3(0.0f));
   placed_.assign(static_cast<size_t>(grid_.count()), relocate ? 0 : 1);
   clear();

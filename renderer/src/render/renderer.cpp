@@ -108,10 +108,10 @@ Status Renderer::setPose(int animation, float time) {
   const Pose pose = poseRig(*impl_->rig, animation, time);
   PN_TRY(impl_->scene->pose(pose));
   PN_TRY(impl_->deform->run(*impl_->scene, pose));
-  // The geometry moved: point-light shadow maps are drawn again and the probes gather anew
-  // (their places stay those of the rest pose).
+  // The geometry moved: point-light shadow maps are drawn again, and the probes are laid over
+  // the pose's bounds (as for the still of that pose) and gather anew.
   if (impl_->pointShadows) impl_->pointShadows->invalidate();
-  if (impl_->probes) impl_->probes->clear();
+  PN_TRY(impl_->layoutProbes());
   impl_->controller.invalidate();
   return {};
 }

@@ -99,6 +99,7 @@ struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, Conve
                                s.showBackground != settings.showBackground ||
                                s.backgroundBlur != settings.backgroundBlur;
     const ProgressiveSettings previous = settings.progressive;
+    const bool probesWereWanted = probesWanted();
     settings = s;
     if (resize) {
       targets.reset();  // made again by the next frame (ensureFrameResources)
@@ -111,7 +112,8 @@ struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, Conve
     }
     const bool relayout = force || s.progressive.probeVolume != previous.probeVolume ||
                           s.progressive.probeDensity != previous.probeDensity ||
-                          s.progressive.probeRelocation != previous.probeRelocation;
+                          s.progressive.probeRelocation != previous.probeRelocation ||
+                          probesWanted() != probesWereWanted;
     controller.setSettings(s.progressive);
     if (sun && restartNeeded) setLights();  // the sun turns and scales with the environment
     if (relayout) {
@@ -145,15 +147,19 @@ struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, Conve
   Status layoutProbes() {
     if (!probes) return {};
     progressive::ProbeGrid grid;
-    if (settings.progressive.probeVolume && scene && seesItself) {
+    if (probesWanted()) {
       grid = progressive::placeProbes(probeBox.valid() ? probeBox : scene->bounds(),
                                       settings.progressive.probeDensity, probeCounts);
     }
     return probes->reset(grid, settings.progressive.probeRelocation);
   }
-  bool probesOn() const {
-    return probes && probes->active() && settings.progressive.probeVolume && scene && seesItself;
+  // The volume is for light between surfaces: a scene that cannot see itself has none, unless
+  // a ground shadow catches the light it reflects (ground.frag reads the probes for it).
+  bool probesWanted() const {
+    return settings.progressive.probeVolume && scene &&
+           (seesItself || settings.shadowIntensity > 0.0f);
   }
+  bool probesOn() const { return probes && probes->active() && probesWanted(); }
 
   PendingFrame pending;
   int frameTiles = 1;
