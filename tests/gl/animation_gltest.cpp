@@ -219,6 +219,10 @@ TEST_F(AnimationGLTest, BadPosesAreOneLineErrors) {
   EXPECT_FALSE((*r)->setPose(1, 0.5f).ok()) << "one animation only";
   EXPECT_FALSE((*r)->setPose(0, NAN).ok());
   EXPECT_TRUE((*r)->setPose(-1, 0.0f).ok()) << "the rest pose";
+  const PoseLayer negative[] = {{0, 0.5f, -1.0f}};
+  EXPECT_FALSE((*r)->setPose(negative).ok()) << "a negative weight";
+  const PoseLayer fade[] = {{0, 0.5f, 0.7f}, {-1, 0.0f, 0.3f}};
+  EXPECT_TRUE((*r)->setPose(fade).ok()) << "a crossfade toward the rest pose";
 }
 
 }  // namespace

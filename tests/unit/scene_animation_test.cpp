@@ -195,6 +195,29 @@ TEST(SceneAnimation, PlaybackRigPosesAsTheLoaderDoes) {
   }
 }
 
+// A crossfade's blend (PoseLayer): one layer is that clip's pose; two at half weight put a
+// translation halfway between theirs and turn a rotation halfway along the arc.
+TEST(SceneAnimation, PoseLayersBlendNodeByNode) {
+  GltfBuilder moving = animatedBox("translation", {0, 0, 0, 2, 0, 0, 2, 4, 0});
+  auto scene = moving.load(false, {.playback = true});
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  const Rig& rig = *scene->rig;
+  const PoseLayer one[] = {{0, 1.5f, 1.0f}};
+  expectAt(glm::vec3(poseRig(rig, one).instanceWorld[0][3]), {2, 2, 0}, "one layer");
+  const PoseLayer half[] = {{0, 1.0f, 0.5f}, {-1, 0.0f, 0.5f}};
+  expectAt(glm::vec3(poseRig(rig, half).instanceWorld[0][3]), {1, 0, 0}, "half of (2, 0, 0)");
+  const PoseLayer unweighted[] = {{0, 1.0f, 0.0f}, {0, 2.0f, 0.0f}};
+  expectAt(glm::vec3(poseRig(rig, unweighted).instanceWorld[0][3]), {0, 0, 0}, "no weight: rest");
+  // Rotations: 90 degrees about Y at t = 1, blended half with the rest pose: 45 degrees.
+  const float s = std::sqrt(0.5f);
+  GltfBuilder turning = animatedBox("rotation", {0, 0, 0, 1, 0, s, 0, s, 0, 1, 0, 0});
+  auto turned = turning.load(false, {.playback = true});
+  ASSERT_TRUE(turned.ok()) << turned.message();
+  const glm::mat4 w = poseRig(*turned->rig, half).instanceWorld[0];
+  expectAt(glm::vec3(w[0]), {std::cos(glm::radians(45.0f)), 0, -std::sin(glm::radians(45.0f))},
+           "x axis turned 45 degrees");
+}
+
 TEST(SceneAnimation, BadRequestsAndFilesAreOneLineErrors) {
   GltfBuilder b = animatedBox("translation", {0, 0, 0, 2, 0, 0, 2, 4, 0});
   auto unknown = b.load(false, {.animation = "jump"});

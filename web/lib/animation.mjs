@@ -8,8 +8,10 @@ export class AnimationPlayer {
   index = -1;       // the chosen one (-1: none: the rest pose)
   time = 0;         // seconds into it
   playing = false;
+  crossfadeMs = 300;  // a newly chosen animation fades in over this while playing (model-viewer's)
+  #fade = null;     // the animation fading out: {index, time, left (seconds of the fade)}
   #last = null;     // the last tick that moved the time
-  #posed = '-1:0';  // the pose last sent (a scene loads at rest: index -1)
+  #posed = '-1:0:-1:0:0';  // the pose last sent (a scene loads at rest)
   #changed;         // called when the loop should run (the viewer wakes it)
 
   constructor(changed = () => {}) { this.#changed = changed; }
@@ -18,13 +20,15 @@ export class AnimationPlayer {
   reset(animations) {
     Object.assign(this, { animations: animations || [], index: -1, time: 0, playing: false });
     this.#last = null;
-    this.#posed = '-1:0';
+    this.#fade = null;
+    this.#posed = '-1:0:-1:0:0';
   }
 
   // Back to the rest pose (no animation chosen).
   rest() {
     Object.assign(this, { index: -1, time: 0, playing: false });
     this.#last = null;
+    this.#fade = null;
     this.#changed();
   }
 
@@ -41,7 +45,12 @@ export class AnimationPlayer {
       const list = this.animations.map((a, k) => a.name || String(k)).join(', ');
       throw new Error(`no animation "${name}"; the model has ${list}`);
     }
-    if (i !== this.index) Object.assign(this, { index: i, time: 0 });
+    if (i !== this.index) {
+      // While playing, the one before fades out over crossfadeMs (model-viewer's crossfade).
+      this.#fade = this.playing && this.index >= 0 && this.crossfadeMs > 0
+        ? { index: this.index, time: this.time, left: this.crossfadeMs / 1000 } : null;
+      Object.assign(this, { index: i, time: 0 });
+    }
     this.#changed();
     return i;
   }
@@ -70,19 +79,31 @@ export class AnimationPlayer {
     this.#changed();
   }
 
-  // Moves the time to `now` while playing and returns [index, time] when the pose to show
-  // changed, else null. Real time, as model-viewer plays (a slow device shows fewer poses, not a
+  // Moves the time to `now` while playing and returns the pose to show when it changed, else
+  // null: [index, time, fading index, its time, its weight] (-1, 0, 0 without a crossfade; for
+  // pv_set_pose). Real time, as model-viewer plays (a slow device shows fewer poses, not a
   // slower animation); a long gap (a background tab) counts at most a second.
   advance(now) {
     if (this.playing && this.#last !== null) {
       const dt = Math.min(Math.max(now - this.#last, 0), 1000) / 1000;
       this.seek(this.time + dt);
+      const f = this.#fade;
+      if (f) {
+        const d = this.animations[f.index].duration;
+        f.time = d > 0 ? (f.time + dt) % d : 0;
+        f.left -= dt;
+        if (f.left <= 0) this.#fade = null;
+      }
     }
+    if (!this.playing) this.#fade = null;  // paused: the chosen one alone
     if (this.playing) this.#last = now;
-    const key = `${this.index}:${this.time}`;
+    const f = this.#fade;
+    const pose = [this.index, this.time, f ? f.index : -1, f ? f.time : 0,
+                  f ? f.left / (this.crossfadeMs / 1000) : 0];
+    const key = pose.join(':');
     if (key === this.#posed) return null;
     this.#posed = key;
-    return [this.index, this.time];
+    return pose;
   }
 }
 
@@ -93,14 +114,18 @@ function setPlaying(el, player, on) {
   if (player.playing !== was) el.dispatchEvent(new CustomEvent(on ? 'play' : 'pause', { detail: {} }));
 }
 
-// <penumbra-viewer>'s autoplay and animation-name on a loaded model (element.mjs calls this in
+// <penumbra-viewer>'s autoplay, animation-name and animation-crossfade-duration on a loaded model (element.mjs calls this in
 // each attribute pass; `applied` holds what it last applied, null after a load). Returns a
 // one-line error for a name the model lacks, else null.
 export function applyAnimationAttributes(el, player, applied) {
   const name = el.getAttribute('animation-name');
-  const key = JSON.stringify([name, el.hasAttribute('autoplay')]);
+  const fade = el.getAttribute('animation-crossfade-duration');
+  const key = JSON.stringify([name, el.hasAttribute('autoplay'), fade]);
   if (key === applied.animation) return null;
   applied.animation = key;
+  const ms = fade === null ? 300 : Number(fade);
+  if (!(ms >= 0)) return `animation-crossfade-duration="${fade}": must be a number of ms >= 0`;
+  player.crossfadeMs = ms;
   try {
     if (name !== null || el.hasAttribute('autoplay')) player.select(name);
     if (el.hasAttribute('autoplay')) setPlaying(el, player, true);

@@ -33,7 +33,6 @@ export const UNSUPPORTED_ATTRIBUTES = Object.freeze({
   ar: 'AR is not supported', 'ar-modes': 'AR is not supported', 'ar-scale': 'AR is not supported',
   'ar-placement': 'AR is not supported', 'ios-src': 'AR is not supported',
   'xr-environment': 'AR is not supported',
-  'animation-crossfade-duration': 'a new animation starts at once (no crossfade)',
   'shadow-softness': 'the ground shadow is as soft as the environment\'s light makes it (shadow-intensity)',
   'skybox-height': 'the skybox is infinitely far (no ground projection)',
   'min-camera-orbit': 'the orbit has no limits', 'max-camera-orbit': 'the orbit has no limits',

@@ -157,6 +157,8 @@ export interface AnimationPlayer {
   readonly time: number;
   readonly playing: boolean;
   readonly duration: number;
+  /** An animation chosen while another plays fades in over this many ms (300). */
+  crossfadeMs: number;
   /** By name or index; null: the first. Throws naming the model's animations. */
   select(name: string | number | null): number;
   play(): boolean;

@@ -21,7 +21,7 @@ export function bindWasmApi(mod) {
     pv_settings_schema: w('pv_settings_schema', s, []),
     pv_set_camera: w('pv_set_camera', s, [n, n, n, n, n, n, n, n, n, n]),
     pv_reset_camera: w('pv_reset_camera', s, []),
-    pv_set_variant: w('pv_set_variant', s, [s]), pv_set_pose: w('pv_set_pose', s, [n, n]),
+    pv_set_variant: w('pv_set_variant', s, [s]), pv_set_pose: w('pv_set_pose', s, [n, n, n, n, n]),
     pv_step: w('pv_step', n, []), pv_last_error: w('pv_last_error', s, []),
     pv_step_part: w('pv_step_part', n, []), pv_set_tiles: w('pv_set_tiles', n, [n]),
     pv_last_part: w('pv_last_part', n, []), pv_last_parts: w('pv_last_parts', n, []),

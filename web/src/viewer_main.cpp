@@ -310,13 +310,22 @@ EMSCRIPTEN_KEEPALIVE const char* pv_set_variant(const char* nameOrIndex) {
 }
 
 // Playback: poses the scene at `time` seconds of animation `index` (-1: the rest pose) on the
-// GPU; restarts accumulation (a playing animation is a moving view).
-EMSCRIPTEN_KEEPALIVE const char* pv_set_pose(int index, float time) {
+// GPU, blended with animation `from` at `fromTime` by `fromWeight` while a crossfade runs (0:
+// none); restarts accumulation (a playing animation is a moving view).
+EMSCRIPTEN_KEEPALIVE const char* pv_set_pose(int index, float time, int from, float fromTime,
+                                             float fromWeight) {
   return guarded([&]() -> json {
     auto v = viewer();
     if (!v) return errorJson(v.message());
     if (!(*v)->scene) return errorJson("setPose: no scene loaded");
-    if (auto st = (*v)->renderer->setPose(index, time); !st) return errorJson(st.message());
+    PoseLayer layers[2] = {{index, time, 1.0f}, {from, fromTime, fromWeight}};
+    size_t count = 1;
+    if (fromWeight > 0.0f) {
+      layers[0].weight = 1.0f - fromWeight;
+      count = 2;
+    }
+    auto st = (*v)->renderer->setPose(std::span<const PoseLayer>(layers, count));
+    if (!st) return errorJson(st.message());
     (*v)->animation = index;
     (*v)->animationTime = time;
     return json{{"animation", index}, {"time", time}};

@@ -4,7 +4,8 @@
 // plays), pause() stops it (the canvas stops changing and the view converges), and the paused
 // pose at currentTime T converges to the picture native penumbra-render draws with
 // --animation 0 --time T (and not to its rest pose); `play` and `pause` fire once each. A name
-// the model lacks is one `error` event naming the model's animations.
+// the model lacks is one `error` event naming the model's animations; another animation chosen
+// while playing fades in (animation-crossfade-duration) and plays.
 //
 // The model is written by before(): a red strip skinned to two joints (the second bends), and
 // a red card that moves up and lifts a corner (a morph target), one animation "wave" over 2 s.
@@ -87,6 +88,10 @@ function animatedGltf() {
     channels: [{ sampler: 0, target: { node: 1, path: 'rotation' } },
                { sampler: 1, target: { node: 3, path: 'weights' } },
                { sampler: 2, target: { node: 3, path: 'translation' } }],
+  }, {
+    name: 'lift',  // the card's corner up and down: what a crossfade from "wave" goes to
+    samplers: [{ input: times, output: f32([0, 1, 0], 'SCALAR') }],
+    channels: [{ sampler: 0, target: { node: 3, path: 'weights' } }],
   }];
   const all = new Uint8Array(offset);
   let at = 0;
@@ -157,7 +162,7 @@ test('autoplay plays, pause() stops and converges at currentTime like native --t
       const el = document.querySelector('penumbra-viewer');
       return { names: el.availableAnimations, duration: el.duration };
     });
-    assert.deepEqual(info.names, ['wave']);
+    assert.deepEqual(info.names, ['wave', 'lift']);
     assert.ok(Math.abs(info.duration - 2) < 1e-6, `duration ${info.duration}`);
     // Playing: the time advances and the canvas changes.
     await pg.waitForFunction(() => document.querySelector('penumbra-viewer').currentTime > 0.2,
@@ -221,7 +226,18 @@ test('autoplay plays, pause() stops and converges at currentTime like native --t
     await pg.waitForFunction(() => window.log.error.length > 0, null, { timeout: 10_000 });
     const errors = await pg.evaluate(() => window.log.error);
     assert.equal(errors.length, 1);
-    assert.match(errors[0], /animation-name="jump".*wave/);
+    assert.match(errors[0], /animation-name="jump".*wave, lift/);
+    // Another animation while playing: it fades in (animation-crossfade-duration) and plays.
+    await pg.evaluate(() => {
+      const el = document.querySelector('penumbra-viewer');
+      el.setAttribute('animation-crossfade-duration', '500');
+      el.setAttribute('animation-name', 'lift');
+      el.play();
+    });
+    await pg.waitForFunction(() => document.querySelector('penumbra-viewer').currentTime > 0.3,
+                             null, { timeout: WAIT_MS, polling: 100 });
+    assert.equal(await pg.evaluate(() => document.querySelector('penumbra-viewer').viewer.animation.index), 1);
+    assert.equal((await pg.evaluate(() => window.log.error)).length, 1, 'no new error');
   } catch (e) {
     await pg.screenshot({ path: join(outDir, 'animation-failed.png') }).catch(() => {});
     e.message += `\n--- console ---\n${consoleLines.slice(-40).join('\n')}`;

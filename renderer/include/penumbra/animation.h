@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -80,5 +81,15 @@ glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation,
 
 // The pose at `time` seconds of clip `animation` (-1: the rest pose).
 Pose poseRig(const Rig& rig, int animation, float time);
+
+// One clip's share of a blended pose (a crossfade from one animation to another).
+struct PoseLayer {
+  int animation = -1;  // -1: the rest pose
+  float time = 0.0f;
+  float weight = 1.0f;
+};
+// The layers' poses blended by weight, node by node (glTF's parts: translations, scales and
+// morph weights linearly, rotations by normalised weighted sums); one layer is that clip's pose.
+Pose poseRig(const Rig& rig, std::span<const PoseLayer> layers);
 
 }  // namespace penumbra

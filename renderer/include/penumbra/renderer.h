@@ -10,8 +10,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 
+#include "penumbra/animation.h"
 #include "penumbra/environment_format.h"
 #include "penumbra/error.h"
 #include "penumbra/frame_plan.h"
@@ -144,6 +146,8 @@ class Renderer {
   // animation shows each pose's first frame, a pose held converges as any still does. Lights
   // and cameras keep their places.
   Status setPose(int animation, float time);
+  // A blend of poses (animation.h's PoseLayer: a crossfade from one animation to the next).
+  Status setPose(std::span<const PoseLayer> layers);
   Status setSettings(const RenderSettings& settings);
 
   // Draws the next intermediate frame (the rest of it when stepPart() began it); returns its

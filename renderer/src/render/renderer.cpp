@@ -90,22 +90,32 @@ Status Renderer::setSkybox(const PackedEnvironment* skybox) {
 }
 
 Status Renderer::setPose(int animation, float time) {
+  const PoseLayer layer{animation, time, 1.0f};
+  return setPose(std::span<const PoseLayer>(&layer, 1));
+}
+
+Status Renderer::setPose(std::span<const PoseLayer> layers) {
   if (!impl_->scene) return makeError("setPose: no scene (call setScene first)");
   if (!impl_->rig) {
     return makeError("setPose: the scene was loaded without playback (LoadOptions::playback)");
   }
-  if (animation < -1 || animation >= static_cast<int>(impl_->rig->clips.size())) {
-    return makeError("no animation " + std::to_string(animation) + ": the scene has " +
-                     std::to_string(impl_->rig->clips.size()));
+  for (const PoseLayer& l : layers) {
+    if (l.animation < -1 || l.animation >= static_cast<int>(impl_->rig->clips.size())) {
+      return makeError("no animation " + std::to_string(l.animation) + ": the scene has " +
+                       std::to_string(impl_->rig->clips.size()));
+    }
+    if (!std::isfinite(l.time)) return makeError("setPose: the time must be a finite number");
+    if (!(l.weight >= 0.0f) || !std::isfinite(l.weight)) {
+      return makeError("setPose: a layer's weight must be a finite number >= 0");
+    }
   }
-  if (!std::isfinite(time)) return makeError("setPose: the time must be a finite number");
   gl::StateGuard guard(impl_->options.preserveHostState);
   if (!impl_->deform) {
     auto pass = passes::DeformPass::create(impl_->library);
     if (!pass) return pass.error();
     impl_->deform.emplace(std::move(*pass));
   }
-  const Pose pose = poseRig(*impl_->rig, animation, time);
+  const Pose pose = poseRig(*impl_->rig, layers);
   PN_TRY(impl_->scene->pose(pose));
   PN_TRY(impl_->deform->run(*impl_->scene, pose));
   // The geometry moved: point-light shadow maps are drawn again, and the probes are laid over

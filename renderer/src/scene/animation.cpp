@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "penumbra/error.h"
 
@@ -74,19 +75,70 @@ glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation,
   return local;
 }
 
-Pose poseRig(const Rig& rig, int animation, float time) {
+namespace {
+
+// The rig's nodes with clip `animation` (-1: none) applied at `time`.
+std::vector<Rig::Node> posedNodes(const Rig& rig, int animation, float time) {
   std::vector<Rig::Node> nodes = rig.nodes;
-  if (animation >= 0 && static_cast<size_t>(animation) < rig.clips.size()) {
-    for (const AnimationCurve& curve : rig.clips[static_cast<size_t>(animation)]) {
-      Rig::Node& node = nodes[static_cast<size_t>(curve.node)];
-      const std::vector<float> v = curve.sample(time);
-      using P = AnimationCurve::Path;
-      if (curve.path == P::Weights) node.weights = v;
-      if (curve.path == P::Translation) node.translation = {v[0], v[1], v[2]};
-      if (curve.path == P::Scale) node.scale = {v[0], v[1], v[2]};
-      if (curve.path == P::Rotation) node.rotation = glm::quat(v[3], v[0], v[1], v[2]);
+  if (animation < 0 || static_cast<size_t>(animation) >= rig.clips.size()) return nodes;
+  for (const AnimationCurve& curve : rig.clips[static_cast<size_t>(animation)]) {
+    Rig::Node& node = nodes[static_cast<size_t>(curve.node)];
+    const std::vector<float> v = curve.sample(time);
+    using P = AnimationCurve::Path;
+    if (curve.path == P::Weights) node.weights = v;
+    if (curve.path == P::Translation) node.translation = {v[0], v[1], v[2]};
+    if (curve.path == P::Scale) node.scale = {v[0], v[1], v[2]};
+    if (curve.path == P::Rotation) node.rotation = glm::quat(v[3], v[0], v[1], v[2]);
+  }
+  return nodes;
+}
+
+// Node parts blended by weight (the weights sum to 1): translations, scales and morph weights
+// linearly, rotations as normalised weighted sums on one side of the sphere (nlerp).
+std::vector<Rig::Node> blendedNodes(const Rig& rig, std::span<const PoseLayer> layers) {
+  float total = 0.0f;
+  for (const PoseLayer& l : layers) total += std::max(l.weight, 0.0f);
+  if (layers.empty() || !(total > 0.0f)) return rig.nodes;
+  std::vector<Rig::Node> out = rig.nodes;
+  for (Rig::Node& n : out) {
+    n.translation = n.scale = glm::vec3(0.0f);
+    n.rotation = glm::quat(0.0f, 0.0f, 0.0f, 0.0f);
+    std::fill(n.weights.begin(), n.weights.end(), 0.0f);
+  }
+  for (const PoseLayer& layer : layers) {
+    const float w = std::max(layer.weight, 0.0f) / total;
+    if (w <= 0.0f) continue;
+    const std::vector<Rig::Node> nodes = posedNodes(rig, layer.animation, layer.time);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      Rig::Node& o = out[i];
+      o.translation += w * nodes[i].translation;
+      o.scale += w * nodes[i].scale;
+      const glm::quat q = glm::dot(o.rotation, nodes[i].rotation) < 0.0f ? -nodes[i].rotation
+                                                                           : nodes[i].rotation;
+      o.rotation = glm::quat(o.rotation.w + w * q.w, o.rotation.x + w * q.x,
+                             o.rotation.y + w * q.y, o.rotation.z + w * q.z);
+      o.weights.resize(std::max(o.weights.size(), nodes[i].weights.size()), 0.0f);
+      for (size_t k = 0; k < nodes[i].weights.size(); ++k) o.weights[k] += w * nodes[i].weights[k];
     }
   }
+  for (Rig::Node& n : out) {
+    const float len = glm::length(n.rotation);
+    n.rotation = len > 0.0f ? n.rotation / len : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  }
+  return out;
+}
+
+}  // namespace
+
+Pose poseRig(const Rig& rig, int animation, float time) {
+  const PoseLayer layer{animation, time, 1.0f};
+  return poseRig(rig, std::span<const PoseLayer>(&layer, 1));
+}
+
+Pose poseRig(const Rig& rig, std::span<const PoseLayer> layers) {
+  std::vector<Rig::Node> nodes =
+      layers.size() == 1 ? posedNodes(rig, layers[0].animation, layers[0].time)
+                         : blendedNodes(rig, layers);
   // World transforms parent first (the loader checked the tree acyclic).
   std::vector<glm::mat4> world(nodes.size());
   std::vector<bool> done(nodes.size(), false);
