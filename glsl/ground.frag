@@ -18,6 +18,38 @@ uniform float uTransparent;  // 1: the darkening is also the pixel's alpha (cove
 
 out vec4 fragColor;
 
+#if PN_PROBES
+// The radiance of the geometry the probes around p see toward d (chunks/probe_volume.glsl's
+// maps; the ground's blocker): each radiance texel's sky share (1 - alpha, at the environment's
+// radiance) taken out, the four probes weighted by their barycentric weights and how much
+// geometry they see there (no visibility tests: the blocker's light is smooth, and the ground
+// pays for every lookup); alpha: the weight of geometry found (0: none, no answer).
+vec4 probeGeometryToward(vec3 p, vec3 n, vec3 v, vec3 d) {
+  ivec3 cells[4];
+  float tri[4];
+  probeTetrahedron(p, n, v, cells, tri);
+  vec2 octD = octEncode(d);
+  vec2 atlasSize = vec2(textureSize(uProbeAtlas, 0));
+  ivec2 irrOrigin = ivec2(probeIrradianceOrigin());
+  vec3 sky = envRadiance(d, 0.0);
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  const int irrTile = PN_PROBE_IRRADIANCE_TEXELS + 2;
+  for (int i = 0; i < 4; ++i) {
+    vec2 tile = probeTile(cells[i]);
+    if (texelFetch(uProbeAtlas, irrOrigin + ivec2(tile) * irrTile + 1, 0).a > 0.5) {
+      vec4 rad = textureLod(uProbeAtlas,
+                            probeAtlasUv(tile, octD, float(PN_PROBE_RADIANCE_TEXELS), vec2(0.0),
+                                         atlasSize),
+                            0.0);
+      sum += tri[i] * max(rad.rgb - (1.0 - rad.a) * sky, vec3(0.0));
+      weightSum += tri[i] * rad.a;
+    }
+  }
+  return weightSum > 0.0 ? vec4(sum / weightSum, 1.0) : vec4(0.0);
+}
+#endif
+
 #if PN_PUNCTUAL
 // The punctual samples' light on the ground (normal up, white, Lambertian), with
 // chunks/punctual_term.glsl's incidence and shadows, lit and unshadowed in one pass over them.

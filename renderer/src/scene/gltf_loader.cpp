@@ -149,6 +149,57 @@ Result<int> findAnimation(const std::vector<Scene::Animation>& animations,
   return ctx.error("no animation '" + nameOrIndex + "'; available: " + list);
 }
 
+// The nodes shown: the scene's (the default one, else the first), else every root node.
+std::vector<int> sceneRoots(const Document& doc, const std::vector<int>& parent,
+                            LoadContext& ctx) {
+  if (doc.scene >= 0 || !doc.scenes.empty()) {
+    return doc.scenes[static_cast<size_t>(std::max(doc.scene, 0))].nodes;
+  }
+  std::vector<int> roots;
+  for (size_t i = 0; i < doc.nodes.size(); ++i) {
+    if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+  }
+  if (!roots.empty()) ctx.warn("the file has no scenes; showing every root node");
+  return roots;
+}
+
+// The file's animations (names, end times), their curves where playback or a still pose needs
+// them, playback's rig with the nodes at rest (before any still pose), and the document posed
+// at LoadOptions' time of its animation.
+struct PreparedAnimations {
+  std::vector<Scene::Animation> list;
+  std::vector<std::vector<AnimationCurve>> clips;
+  std::shared_ptr<Rig> rig;
+};
+Result<PreparedAnimations> prepareAnimations(Document& doc, const std::vector<int>& parent,
+                                             const LoadOptions& options, LoadContext& ctx) {
+  PreparedAnimations out;
+  for (size_t a = 0; a < doc.animations.size(); ++a) {
+    out.list.push_back(
+        {doc.animations[a].name, gltf::animationDuration(doc, static_cast<int>(a), ctx)});
+  }
+  if (options.playback || !options.animation.empty()) {
+    for (size_t a = 0; a < doc.animations.size(); ++a) {
+      auto clip = gltf::readClip(doc, static_cast<int>(a), ctx);
+      if (!clip.ok()) return clip.error();
+      out.clips.push_back(std::move(clip).value());
+    }
+  }
+  if (options.playback) {
+    out.rig = std::make_shared<Rig>();
+    out.rig->nodes = gltf::rigNodes(doc, parent);
+  }
+  if (!options.animation.empty()) {
+    auto index = findAnimation(out.list, options.animation, ctx);
+    if (!index.ok()) return index.error();
+    if (!std::isfinite(options.animationTime)) {
+      return ctx.error("animation time must be a finite number of seconds");
+    }
+    gltf::poseAnimation(doc, out.clips[static_cast<size_t>(*index)], options.animationTime);
+  }
+  return out;
+}
+
 Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
                    const std::string& name, const LoadOptions& options) {
   LoadContext ctx;
@@ -166,40 +217,11 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
   PN_TRY(gltf::loadBuffers(doc, container->bin, ctx));
   std::vector<int> parent;
   PN_TRY(checkNodeGraph(doc, parent, ctx));
-  std::vector<Scene::Animation> animations;
-  for (size_t a = 0; a < doc.animations.size(); ++a) {
-    animations.push_back(
-        {doc.animations[a].name, gltf::animationDuration(doc, static_cast<int>(a), ctx)});
-  }
-  std::vector<std::vector<AnimationCurve>> clips;
-  if (options.playback || !options.animation.empty()) {
-    for (size_t a = 0; a < doc.animations.size(); ++a) {
-      auto clip = gltf::readClip(doc, static_cast<int>(a), ctx);
-      if (!clip.ok()) return clip.error();
-      clips.push_back(std::move(clip).value());
-    }
-  }
-  // Playback poses from the rest pose: the rig keeps the nodes before any still pose.
-  auto rig = options.playback ? std::make_shared<Rig>() : nullptr;
-  if (rig) rig->nodes = gltf::rigNodes(doc, parent);
-  if (!options.animation.empty()) {
-    auto index = findAnimation(animations, options.animation, ctx);
-    if (!index.ok()) return index.error();
-    if (!std::isfinite(options.animationTime)) {
-      return ctx.error("animation time must be a finite number of seconds");
-    }
-    gltf::poseAnimation(doc, clips[static_cast<size_t>(*index)], options.animationTime);
-  }
+  auto prepared = prepareAnimations(doc, parent, options, ctx);
+  if (!prepared.ok()) return prepared.error();
+  auto& [animations, clips, rig] = *prepared;
 
-  std::vector<int> roots;
-  if (doc.scene >= 0 || !doc.scenes.empty()) {
-    roots = doc.scenes[static_cast<size_t>(std::max(doc.scene, 0))].nodes;
-  } else {
-    for (size_t i = 0; i < doc.nodes.size(); ++i) {
-      if (parent[i] < 0) roots.push_back(static_cast<int>(i));
-    }
-    if (!roots.empty()) ctx.warn("the file has no scenes; showing every root node");
-  }
+  const std::vector<int> roots = sceneRoots(doc, parent, ctx);
 
   Scene scene;
   // A scene mesh per (glTF mesh, morph weights, skin): a node's own weights pose its own copy,
@@ -224,11 +246,10 @@ Result<Scene> load(std::span<const uint8_t> bytes, const std::string& baseDir,
     const gltf::NodeDesc& node = doc.nodes[static_cast<size_t>(index)];
     const glm::mat4 world = parentWorld * node.local;
     if (node.mesh >= 0) {
-      const bool ownMorph =
-          rig && !doc.meshes[static_cast<size_t>(node.mesh)].primitives.empty() &&
-          std::any_of(doc.meshes[static_cast<size_t>(node.mesh)].primitives.begin(),
-                      doc.meshes[static_cast<size_t>(node.mesh)].primitives.end(),
-                      [](const gltf::PrimitiveDesc& pd) { return !pd.targets.empty(); });
+      const auto& prims = doc.meshes[static_cast<size_t>(node.mesh)].primitives;
+      const bool ownMorph = rig && std::any_of(prims.begin(), prims.end(), [](const auto& pd) {
+                              return !pd.targets.empty();
+                            });
       MeshKey key{node.mesh, node.weights.value_or(std::vector<float>{}), node.skin,
                   ownMorph ? index : -1};
       auto [it, added] = meshRemap.emplace(key, static_cast<int>(meshOrder.size()));
