@@ -267,7 +267,12 @@ Result<Primitive> convertPrimitive(Document& doc, const PrimitiveDesc& pd,
   // Playback keeps the primitive as the file has it, and what poses it.
   std::optional<Primitive> base;
   auto deformation = std::make_shared<Deformation>();
-  if (ctx.options.playback && (!pd.targets.empty() || !joints.empty())) base = prim;
+  if (ctx.options.playback && (!pd.targets.empty() || !joints.empty())) {
+    // The rest copy, joints and weights, and three displacements a target: within the budget.
+    PN_TRY(ctx.reserve(prim.positions.size() * (72 + 36 * pd.targets.size()),
+                       what + " playback data"));
+    base = prim;
+  }
   if (!pd.targets.empty()) {
     PN_TRY(applyMorphTargets(doc, pd, weights, prim, ctx, what));
     if (base) {
