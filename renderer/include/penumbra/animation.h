@@ -73,6 +73,10 @@ struct Pose {
   std::vector<glm::mat4> instanceWorld;        // per Scene instance
   std::vector<std::vector<glm::mat4>> joints;  // per skin: joint world x inverse bind
   std::vector<std::vector<float>> weights;     // per Scene mesh (empty: no morph targets)
+
+  // Mesh `mesh`'s morph weights (empty: none) and skin `skin`'s joints (null: none, or -1).
+  const std::vector<float>& weightsOf(int mesh) const;
+  const std::vector<glm::mat4>* jointsOf(int skin) const;
 };
 
 // A node's local matrix from its translation, rotation and scale (glTF 3.5.3: T * R * S).

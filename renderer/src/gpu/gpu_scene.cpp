@@ -226,18 +226,9 @@ Status GpuScene::pose(const Pose& pose) {
     }
     tex.upload(0, rows.data(), gl::DataType::Float);
   }
-  static const std::vector<float> kNoWeights;
   for (GpuPrimitive* p : deformed_) {
     const GpuDeformation& d = *p->deformation;
-    const int skin =
-        static_cast<size_t>(d.mesh) < skinOf_.size() ? skinOf_[static_cast<size_t>(d.mesh)] : -1;
-    const std::vector<glm::mat4>* joints = skin >= 0 && static_cast<size_t>(skin) < pose.joints.size()
-                                               ? &pose.joints[static_cast<size_t>(skin)]
-                                               : nullptr;
-    const auto& weights = static_cast<size_t>(d.mesh) < pose.weights.size()
-                              ? pose.weights[static_cast<size_t>(d.mesh)]
-                              : kNoWeights;
-    p->bounds = d.posedBounds(weights, joints);
+    p->bounds = d.posedBounds(pose.weightsOf(d.mesh), pose.jointsOf(skinOf(d.mesh)));
   }
   return buildDrawItems();
 }

@@ -60,16 +60,13 @@ Result<gl::Program*> DeformPass::program(const DeformKey& key) {
 }
 
 Status DeformPass::run(const GpuScene& scene, const Pose& pose) {
-  static const std::vector<float> kNoWeights;
   framebuffer_.bind();
   for (const GpuPrimitive* prim : scene.deformed()) {
     const GpuDeformation& d = *prim->deformation;
     if (prim->posedBuffer[0] < 0 || prim->posedBuffer[1] < 0) continue;  // nothing to write
     const int skin = scene.skinOf(d.mesh);
-    const bool skinned = d.skinned && skin >= 0 && static_cast<size_t>(skin) < pose.joints.size();
-    const std::vector<float>& weights = static_cast<size_t>(d.mesh) < pose.weights.size()
-                                            ? pose.weights[static_cast<size_t>(d.mesh)]
-                                            : kNoWeights;
+    const bool skinned = d.skinned && pose.jointsOf(skin);
+    const std::vector<float>& weights = pose.weightsOf(d.mesh);
     const int targets = std::min(d.targets, static_cast<int>(weights.size()));
     const bool tangents = d.tangents && prim->posedBuffer[2] >= 0;
     DeformKey key;

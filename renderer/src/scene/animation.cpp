@@ -65,6 +65,18 @@ std::vector<float> AnimationCurve::sample(float time) const {
   return out;
 }
 
+const std::vector<float>& Pose::weightsOf(int mesh) const {
+  static const std::vector<float> kNone;
+  return mesh >= 0 && static_cast<size_t>(mesh) < weights.size()
+             ? weights[static_cast<size_t>(mesh)]
+             : kNone;
+}
+
+const std::vector<glm::mat4>* Pose::jointsOf(int skin) const {
+  return skin >= 0 && static_cast<size_t>(skin) < joints.size() ? &joints[static_cast<size_t>(skin)]
+                                                                : nullptr;
+}
+
 glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation,
                      const glm::vec3& scale) {
   glm::mat4 local = glm::mat4_cast(rotation);
