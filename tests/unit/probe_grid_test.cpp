@@ -125,32 +125,33 @@ TEST(ProbeGridTest, CapturesTaperAsTheVolumeSettles) {
   }
 }
 
-TEST(ProbeGridTest, CacheRemadeEverMoreRarely) {
+TEST(ProbeGridTest, CacheRemadeEveryOtherFrameWhileFillingThenAtAFixedInterval) {
   // Simulate a still view of 1024 frames of a 64-probe volume at the default rate.
   const int count = 64;
-  double captured = 0.0, then = 0.0;
+  double captured = 0.0;
   int last = -1;
   int young = 0, settled = 0;
   for (int frame = 2; frame <= 1024; ++frame) {
     const double mean = captured / count;
-    if (remakeProbeCache(last < 0 ? -1 : frame - last, mean, then)) {
+    const bool filling = mean < kProbeSettledCaptures;
+    if (remakeProbeCache(last < 0 ? -1 : frame - last, mean)) {
       if (last >= 0) {
-        EXPECT_GE(frame - last, mean < kProbeSettledCaptures ? 2 : 8) << frame;
+        EXPECT_EQ(frame - last, filling ? 2 : kProbeCacheInterval) << frame;
       }
-      (mean < kProbeSettledCaptures ? young : settled) += 1;
+      (filling ? young : settled) += 1;
       last = frame;
-      then = mean;
+    } else {
+      // Never later than the interval: the image's probe light is the mean of its remakes.
+      EXPECT_LT(frame - last, filling ? 2 : kProbeCacheInterval) << frame;
     }
     captured += probeCapturesThisFrame(2, count, mean, frame);
   }
-  // Every other frame while filling (16 frames), then a remake each time the captures grow by
-  // a quarter: logarithmic in the frame count (from 4 to about 20 captures a probe: about 7).
+  // Every other frame while filling (about 16 frames), then every kProbeCacheInterval frames.
   EXPECT_GE(young, 6);
   EXPECT_LE(young, 9);
-  EXPECT_GE(settled, 5);
-  EXPECT_LE(settled, 12);
+  EXPECT_NEAR(settled, (1024 - 16) / kProbeCacheInterval, 2);
   // A new view remakes at once.
-  EXPECT_TRUE(remakeProbeCache(-1, 10.0, 10.0));
+  EXPECT_TRUE(remakeProbeCache(-1, 10.0));
 }
 
 }  // namespace

@@ -70,8 +70,11 @@ class ProbeVolume {
   // cube maps): two shadow passes of kMaxShadowMaps maps.
   static constexpr int kMaxCaptureLights = 2 * kMaxShadowMaps;
   // Captures averaged at most: later ones weigh 1/kHistory (an exponential moving average, as
-  // DDGI's hysteresis), so the bounces each capture adds arrive quickly.
-  static constexpr int kHistory = 4;
+  // DDGI's hysteresis), so the bounces each capture adds still arrive. 16, not 4: with the
+  // per-view cache remade every 8 frames the image follows the volume closely, and its
+  // captures' noise (one point on each area light) showed: the kitchen looked done at 401
+  // frames with 4, 313 with 16, the room (cm) 667 and 521 (decisions/2026-12-07-probe-cache-remakes.md).
+  static constexpr int kHistory = 16;
   // A probe's first kReplaced + 1 captures replace its value instead of joining the mean: while
   // the volume fills they differ by the bounces they saw more than by noise, and a mean would
   // keep the first capture's missing bounces for many sweeps (in the room (cm) the image's mean

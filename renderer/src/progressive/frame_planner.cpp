@@ -17,17 +17,15 @@ void planCaches(const FramePlan& plan, const FrameScene& scene, const FrameLimit
   const bool occlusion = plan.occlusion && scene.seesItself;
   s.drawPrepass = occlusion && (plan.renderPrepass || !caches.prepassValid || coverageChanges);
   s.occlusion = occlusion && (s.drawPrepass || caches.prepassValid);
-  // The probe volume's per-view cache, read in between remakes (remakeProbeCache: ever more
-  // rarely as the volume converges).
+  // The probe volume's per-view cache, read in between remakes (remakeProbeCache).
   s.readProbeCache = s.occlusion && scene.probes && limits.probeCache;
   const double captured = scene.probes ? scene.probeMeanCaptures : 0.0;
   const int since = caches.probeCacheFrame < 0 ? -1 : plan.frame - caches.probeCacheFrame;
   s.writeProbeCache =
-      s.readProbeCache && remakeProbeCache(since, captured, caches.probeCacheCaptures);
+      s.readProbeCache && remakeProbeCache(since, captured);
   s.occlusionReadsProbeCache = s.readProbeCache && since > 0;
   if (s.writeProbeCache) {
     caches.probeCacheFrame = plan.frame;
-    caches.probeCacheCaptures = captured;
   }
   // An empty volume (no capture yet: the first frame after a reset) answers nothing, so frames
   // without occlusion rays skip its per-pixel lookup; later frames keep it, so that the

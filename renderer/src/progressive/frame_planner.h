@@ -58,7 +58,6 @@ struct CacheState {
   bool prepassValid = false;        // set by the executor once a prepass's last band is drawn
   int lightCacheWritten = 0;        // frames added to the area lights' per-view cache
   int probeCacheFrame = -1;         // the frame the probe volume's per-view cache was made at
-  double probeCacheCaptures = 0.0;  // the volume's mean captures then
 };
 
 enum class StepKind {

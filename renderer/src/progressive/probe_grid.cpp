@@ -122,11 +122,9 @@ int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int fra
   return static_cast<int>(std::floor(rate * f) - std::floor(rate * (f - 1.0)));
 }
 
-bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen) {
+bool remakeProbeCache(int framesSince, double meanCaptures) {
   if (framesSince < 0) return true;
-  if (meanCaptures < kProbeSettledCaptures) return framesSince >= 2;
-  return framesSince >= 8 &&
-         (meanCapturesThen < kProbeSettledCaptures || meanCaptures >= 1.25 * meanCapturesThen);
+  return framesSince >= (meanCaptures < kProbeSettledCaptures ? 2 : kProbeCacheInterval);
 }
 
 }  // namespace penumbra::progressive

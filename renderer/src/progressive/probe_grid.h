@@ -65,11 +65,14 @@ inline constexpr int kProbeFillCaptures = 16;
 int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int frame);
 
 // Whether a still view's frame remakes the per-view cache of the volume's lookups, given the
-// frames since the last remake (< 0: none this view) and the mean captures a probe now and at
-// that remake: every other frame while the volume is filling (a longer lag would show in the
-// early images); once it has settled, when its captures have grown by a quarter (its running
-// means move by about that share then: ever more rarely as it converges), and no more often
-// than every 8 frames.
-bool remakeProbeCache(int framesSince, double meanCaptures, double meanCapturesThen);
+// frames since the last remake (< 0: none this view) and the mean captures a probe now: every
+// other frame while the volume is filling (a longer lag would show in the early images), then
+// every kProbeCacheInterval frames. Each remake is drawn at one frame's sub-pixel jitter and one
+// state of the volume, and the image's probe light is the mean of the remakes it saw: remade
+// ever more rarely (when the captures had grown by a quarter, about ten times in 1024 frames),
+// DamagedHelmet's image converged on a stale remake for dozens of frames, and its stopping oracle
+// was 176 frames instead of 65 (docs/decisions/2026-12-07-probe-cache-remakes.md).
+inline constexpr int kProbeCacheInterval = 8;
+bool remakeProbeCache(int framesSince, double meanCaptures);
 
 }  // namespace penumbra::progressive
