@@ -12,7 +12,7 @@ import collections
 import math
 
 ROUNDING = 1.0 / 6.0   # two roundings to 8 bits, in steps squared
-MARGIN = 1.1           # convergence.h kChangeMargin, inside the recorded estimates
+MARGIN = 1.0           # convergence.h kChangeMargin, inside the recorded estimates (1.1 before 2026-12-07's second round)
 
 
 def raw(displayed, frame, cap):

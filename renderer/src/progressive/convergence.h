@@ -70,12 +70,12 @@ struct TrendPoint {
 };
 double decayRate(std::span<const TrendPoint> trend);
 
-// The change from N/2 to N understates a real render's error where part of it falls slowly (the
-// probe volume keeps filling for hundreds of frames in an interior: a drift the change hardly
-// sees, which the image at the cap no longer has). Measured with tools/oracle on nine scenes and
-// models: 1.0 stopped the Cornell box before its oracle frame, 1.2 stopped the product and the
-// glass shelf past 1.5x theirs; 1.1 lies between (docs/decisions/2026-12-07-stopping-oracle.md).
-inline constexpr double kChangeMargin = 1.1;
+// A margin on the change from N/2 to N, kept as a measured constant. 1.1 until the probe
+// volume's per-view cache was remade every 8 frames: a stale remake was an error the change
+// hardly saw, which the image at the cap no longer had. With it gone, 1.0 stops 11 of 13 views
+// within [1.0, 1.3] of their oracle frames, 1.1 five (tools/oracle's replay, 320x180;
+// docs/decisions/2026-12-07-probe-cache-remakes.md).
+inline constexpr double kChangeMargin = 1.0;
 // A tile's estimated error (its change scaled to the error, in 8-bit steps) as the displayed
 // 8-bit image shows it: times kChangeMargin, with the variance of two roundings to 8 bits
 // (1/6 of a step squared: the image now and the final one) added.
