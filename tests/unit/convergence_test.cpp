@@ -225,27 +225,50 @@ TEST(ConvergenceTest, OneNoisyRegionKeepsTheViewGoing) {
 
 TEST(ConvergenceTest, ExpectedFramesFollowTheMeasuredRate) {
   // The first checkpoint at or after `frames`.
-  const auto all = autoCheckpoints(1024);
+  const auto all = autoCheckpoints(1 << 20);
   auto at = [&](double frames) {
     return *std::lower_bound(all.begin(), all.end(), std::ceil(frames));
   };
+  // A cap so far away that what is left before it is all of the error.
+  const int far = 1 << 20;
   ConvergenceEstimate e = summarizeTiles(std::vector<float>(100, 2.0f), 1.0, 32);
   // Error 2 at 32 against 1, falling as noise: (2 / 1)^2 times 32 frames, counted without the
   // 8-bit rounding (which does not fall).
   const double r = withoutRounding(2.0) / withoutRounding(1.0);
   EXPECT_NEAR(r, 2.14, 0.01);
-  EXPECT_EQ(expectedFrames(e, 1.0, 1024), at(32 * r * r));
-  EXPECT_EQ(expectedFrames(e, 1.0, 100), 100) << "never past the cap";
+  EXPECT_EQ(expectedFrames(e, 1.0, far), at(32 * r * r));
+  EXPECT_LE(expectedFrames(e, 1.0, 100), 100) << "never past the cap";
   // Falling as 1/N: r times 32.
   e.decay = e.tileDecay = 1.0;
-  EXPECT_EQ(expectedFrames(e, 1.0, 1024), at(32 * r));
+  EXPECT_EQ(expectedFrames(e, 1.0, far), at(32 * r));
   // The tiles can be the later: 99 % at 12 against 3 x 1, falling as noise: about 16 x 32.
   e = summarizeTiles(std::vector<float>(100, 0.5f), 1.0, 32);
   e.tileError = 12.0;
   e.converged = false;
   const double t = withoutRounding(12.0) / withoutRounding(3.0);
-  EXPECT_EQ(expectedFrames(e, 1.0, 1024), at(32 * t * t));
+  EXPECT_EQ(expectedFrames(e, 1.0, far), at(32 * t * t));
   EXPECT_EQ(expectedFrames(ConvergenceEstimate{}, 1.0, 512), 512) << "unmeasured: the cap";
+}
+
+TEST(ConvergenceTest, ExpectedFramesCountWhatIsLeftBeforeTheCap) {
+  // An estimate that is the error against the image at the cap, sqrt(1 - N / cap) of the
+  // noise's: at 64 of 1024 frames, 2 steps. Its stop is the first checkpoint c at which
+  // 2 sqrt(64 / c) sqrt(1 - c / 1024) / sqrt(1 - 64 / 1024) is under 1 (without rounding).
+  const int cap = 1024;
+  ConvergenceEstimate e = summarizeTiles(std::vector<float>(100, 2.0f), 1.0, 64);
+  const double v = withoutRounding(2.0), bound = withoutRounding(1.0);
+  auto meets = [&](int c) {
+    return v * std::sqrt(64.0 / c) * std::sqrt(1.0 - c / 1024.0) / std::sqrt(1.0 - 64.0 / 1024.0) <=
+           bound;
+  };
+  const int expected = expectedFrames(e, 1.0, cap);
+  const auto all = autoCheckpoints(cap);
+  const auto it = std::find(all.begin(), all.end(), expected);
+  ASSERT_NE(it, all.end()) << "a checkpoint";
+  EXPECT_TRUE(meets(expected)) << expected;
+  EXPECT_FALSE(meets(*(it - 1))) << "the checkpoint before still over";
+  // Earlier than the same estimate extrapolated as if the cap were unreachable.
+  EXPECT_LT(expected, expectedFrames(e, 1.0, 1 << 20));
 }
 
 // Renders nothing; keeps checkpoints as the renderer does and measures the change of an error

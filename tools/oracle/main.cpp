@@ -200,11 +200,13 @@ Result<Row> measure(const std::string& scene, const Options& o) {
   }
   row.stop = (*r)->framesDone();
   row.stopS = total;
-  // As the viewer says it: the frames left at the mean time a frame so far.
+  // As the viewer says it (web/lib/progress.mjs): the frames left at the mean time of the last
+  // eight frames.
   std::vector<double> factors;
   for (int k = 9; k < row.stop; ++k) {
     const double done = t[static_cast<size_t>(k - 1)];
-    const double predicted = (expected[static_cast<size_t>(k - 1)] - k) * done / k;
+    const double recent = (done - t[static_cast<size_t>(k - 9)]) / 8.0;
+    const double predicted = (expected[static_cast<size_t>(k - 1)] - k) * recent;
     const double real = total - done;
     if (predicted <= 0 || real <= 0) continue;
     factors.push_back(std::max(predicted / real, real / predicted));

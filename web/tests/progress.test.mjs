@@ -38,3 +38,17 @@ test('the time left is shown only once the view has measured itself', () => {
   assert.equal(m.update({ frame: 11, total: 110, converged: false, frameMs: 0 }).secondsLeft, null,
                'no frame time yet');
 });
+
+test('the time left prices the frames left at the last few frames\' mean cost', () => {
+  const m = new ProgressMeter();
+  // Early frames dear (first light, the volume filling), later ones cheap (tiles skipped).
+  let left = null;
+  for (let frame = 1; frame <= 20; frame++) {
+    left = m.update({ frame, total: 120, converged: false, frameMs: frame <= 10 ? 400 : 100 })
+      .secondsLeft;
+  }
+  assert.equal(left, (100 * 100) / 1000, 'the last 8 frames cost 100 ms each');
+  // One dear frame among them moves the price by its share of the window only.
+  left = m.update({ frame: 21, total: 120, converged: false, frameMs: 900 }).secondsLeft;
+  assert.equal(left, (99 * (7 * 100 + 900)) / 8 / 1000);
+});

@@ -118,15 +118,21 @@ std::vector<float> TileSkip::effective(std::span<const float> rms) const {
 int expectedFrames(const ConvergenceEstimate& e, double threshold, int cap) {
   if (!e.measured || threshold <= 0.0) return cap;
   if (e.converged) return std::min(e.frame, cap);
-  const auto frames = [&](double value, double bound, double decay) {
-    const double ratio = withoutRounding(value) / withoutRounding(bound);
-    if (!std::isfinite(ratio)) return static_cast<double>(cap);
-    return e.frame * std::pow(std::max(ratio, 1.0), 1.0 / std::clamp(decay, 0.5, 1.0));
+  // What is left to change before the cap, sqrt(1 - N / cap) of the error (the estimate's own
+  // factor): it falls with N too, so it is taken out at N and put back at each checkpoint.
+  const auto rest = [&](double n) { return std::sqrt(std::max(0.0, 1.0 - n / cap)); };
+  const double now = std::max(rest(e.frame), 1e-3);
+  const auto meets = [&](double c, double value, double bound, double decay) {
+    const double v = withoutRounding(value) / now *
+                     std::pow(e.frame / c, std::clamp(decay, 0.5, 1.0)) * rest(c);
+    return v <= withoutRounding(bound);
   };
-  const double need = std::max(frames(e.error, threshold, e.decay),
-                               frames(e.tileError, kTileFactor * threshold, e.tileDecay));
   for (const int c : autoCheckpoints(cap)) {
-    if (c > e.frame && c >= need) return c;
+    if (c <= e.frame) continue;
+    if (meets(c, e.error, threshold, e.decay) &&
+        meets(c, e.tileError, kTileFactor * threshold, e.tileDecay)) {
+      return c;
+    }
   }
   return cap;
 }

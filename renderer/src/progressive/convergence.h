@@ -123,12 +123,12 @@ struct ConvergenceEstimate {
 // The estimate from the tiles' RMS changes at checkpoint `frame`.
 ConvergenceEstimate summarizeTiles(std::span<const float> tileRms, double threshold, int frame);
 
-// The frame at which the view is expected to converge: the error and the tiles' fall at their
+// The frame at which the view is expected to converge: the first checkpoint of the plan
+// (autoCheckpoints) after N, at most `cap`, at which the error and the tiles', falling at their
 // measured rates (decay, tileDecay: independent noise 1/2, stratified terms and a filling
-// volume's bias up to 1), so the later of N (error / threshold)^(1/decay) and
-// N (tileError / (kTileFactor threshold))^(1/tileDecay) (each without the 8-bit rounding, which
-// does not fall), rounded up to a checkpoint of the plan (autoCheckpoints) after N and at most
-// `cap`.
+// volume's bias up to 1) and by what is left to change before the cap (sqrt(1 - c / cap), as the
+// estimate counts it), are under threshold and kTileFactor threshold (each without the 8-bit
+// rounding, which does not fall).
 // Without a measurement: `cap`.
 int expectedFrames(const ConvergenceEstimate& e, double threshold, int cap);
 
