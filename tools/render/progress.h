@@ -3,6 +3,8 @@
 #pragma once
 
 #include <chrono>
+#include <deque>
+#include <utility>
 #include <string>
 
 namespace penumbra::tools {
@@ -20,6 +22,9 @@ class ProgressBar {
   int total_;
   bool enabled_;
   std::chrono::steady_clock::time_point start_;
+  // The last few updates (done, seconds since start): the units left are priced at their mean
+  // cost, as the web viewer does (web/lib/progress.mjs): early frames are dearer.
+  std::deque<std::pair<int, double>> recent_;
 };
 
 }  // namespace penumbra::tools
