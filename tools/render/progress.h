@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <deque>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace penumbra::tools {
 

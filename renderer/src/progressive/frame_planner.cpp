@@ -21,12 +21,9 @@ void planCaches(const FramePlan& plan, const FrameScene& scene, const FrameLimit
   s.readProbeCache = s.occlusion && scene.probes && limits.probeCache;
   const double captured = scene.probes ? scene.probeMeanCaptures : 0.0;
   const int since = caches.probeCacheFrame < 0 ? -1 : plan.frame - caches.probeCacheFrame;
-  s.writeProbeCache =
-      s.readProbeCache && remakeProbeCache(since, captured);
+  s.writeProbeCache = s.readProbeCache && remakeProbeCache(since, captured);
   s.occlusionReadsProbeCache = s.readProbeCache && since > 0;
-  if (s.writeProbeCache) {
-    caches.probeCacheFrame = plan.frame;
-  }
+  if (s.writeProbeCache) caches.probeCacheFrame = plan.frame;
   // An empty volume (no capture yet: the first frame after a reset) answers nothing, so frames
   // without occlusion rays skip its per-pixel lookup; later frames keep it, so that the
   // per-view cache's remakes stay on their schedule.

@@ -71,7 +71,7 @@ int probeCapturesThisFrame(int perFrame, int count, double meanCaptures, int fra
 // state of the volume, and the image's probe light is the mean of the remakes it saw: remade
 // ever more rarely (when the captures had grown by a quarter, about ten times in 1024 frames),
 // DamagedHelmet's image converged on a stale remake for dozens of frames, and its stopping oracle
-// was 176 frames instead of 65 (docs/decisions/2026-12-07-probe-cache-remakes.md).
+// was 176 frames instead of 91 (docs/decisions/2026-12-07-probe-cache-remakes.md).
 inline constexpr int kProbeCacheInterval = 8;
 bool remakeProbeCache(int framesSince, double meanCaptures);
 
