@@ -46,6 +46,11 @@ struct RendererOptions {
   // surfaces) adds its sample to the running mean as it draws, instead of in an accumulation
   // pass of its own (off: always the separate pass; for A/B runs and tests).
   bool fusedAccumulation = true;
+  // With BLEND surfaces (stochastic transparency from frame 2), the displayed image of frames
+  // 2-16 mixes the alpha-blended frame 1 back in, fading to the mean, so that the next few
+  // frames' binary coverage does not break it into specks (off: the mean as it is; for A/B
+  // runs and tests). The mean, the convergence measure and readRadiance are never mixed.
+  bool firstFrameHold = true;
 };
 
 // Punctual (KHR_lights_punctual) lights shaded per frame; further ones are not (RenderJob

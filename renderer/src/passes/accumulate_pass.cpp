@@ -9,7 +9,9 @@ Result<AccumulatePass> AccumulatePass::create(gl::ShaderLibrary& library) {
   if (!pass) return pass.error();
   auto upsample = FullscreenPass::create(library, "upsample.frag");
   if (!upsample) return upsample.error();
-  return AccumulatePass(std::move(*pass), std::move(*upsample));
+  auto hold = FullscreenPass::create(library, "first_frame_hold.frag");
+  if (!hold) return hold.error();
+  return AccumulatePass(std::move(*pass), std::move(*upsample), std::move(*hold));
 }
 
 void AccumulatePass::draw(const RenderTargets& targets, int n) const {
@@ -35,6 +37,24 @@ void AccumulatePass::upsampleFirst(const RenderTargets& targets, int drawnWidth,
   p.bind("uCurrent", targets.frame.color);
   p.set("uDrawnSize", glm::vec2(drawnWidth, drawnHeight));
   upsample_.draw();
+}
+
+void AccumulatePass::keepFirst(const RenderTargets& targets) const {
+  PN_CHECK(static_cast<bool>(targets.firstFrame.color), "keepFirst: ensureFirstFrameHold first");
+  targets.accumulation[static_cast<std::size_t>(targets.current)].framebuffer.blitColorTo(
+      targets.firstFrame.framebuffer, targets.width, targets.height);
+}
+
+void AccumulatePass::drawHeld(const RenderTargets& targets, float hold) const {
+  PN_CHECK(static_cast<bool>(targets.held.color), "drawHeld: ensureFirstFrameHold first");
+  PN_CHECK(hold > 0.0f && hold < 1.0f, "drawHeld: the hold is in (0, 1)");
+  targets.held.framebuffer.bind();
+  gl::setViewport(0, 0, targets.width, targets.height);
+  const gl::Program& p = hold_.begin();
+  p.bind("uMean", targets.accumulation[static_cast<std::size_t>(targets.current)].color);
+  p.bind("uFirst", targets.firstFrame.color);
+  p.set("uHold", hold);
+  hold_.draw();
 }
 
 }  // namespace penumbra::passes

@@ -20,12 +20,18 @@ class AccumulatePass {
   // upsampled into the other accumulation target over the whole image (the caller makes it
   // current).
   void upsampleFirst(const RenderTargets& targets, int drawnWidth, int drawnHeight) const;
+  // Stochastic transparency's early frames (progressive/first_frame_hold.h): keepFirst copies
+  // the mean after frame 1 into targets.firstFrame; drawHeld draws mix(mean, first, hold) into
+  // targets.held, the image to display. Both need RenderTargets::ensureFirstFrameHold.
+  void keepFirst(const RenderTargets& targets) const;
+  void drawHeld(const RenderTargets& targets, float hold) const;
 
  private:
-  AccumulatePass(FullscreenPass pass, FullscreenPass upsample)
-      : pass_(std::move(pass)), upsample_(std::move(upsample)) {}
+  AccumulatePass(FullscreenPass pass, FullscreenPass upsample, FullscreenPass hold)
+      : pass_(std::move(pass)), upsample_(std::move(upsample)), hold_(std::move(hold)) {}
   FullscreenPass pass_;
   FullscreenPass upsample_;
+  FullscreenPass hold_;
 };
 
 }  // namespace penumbra::passes

@@ -100,6 +100,17 @@ Status RenderTargets::ensureTransmission() {
   return {};
 }
 
+Status RenderTargets::ensureFirstFrameHold() {
+  if (firstFrame.color) return {};
+  auto first = makeColor(width, height, format, nullptr);
+  if (!first) return makeError("first-frame target: " + first.message());
+  auto mix = makeColor(width, height, format, nullptr);
+  if (!mix) return makeError("first-frame target: " + mix.message());
+  firstFrame = std::move(*first);
+  held = std::move(*mix);
+  return {};
+}
+
 Status RenderTargets::ensureOcclusion(int block) {
   if (occlusion.color && occlusionBlock == block) return {};
   auto t = makeColor(occlusionWidth(block), occlusionHeight(block), prepassFormat, nullptr);

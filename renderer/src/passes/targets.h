@@ -53,6 +53,12 @@ struct RenderTargets {
   ColorTarget glassLight;
   ColorTarget behind;
 
+  // Stochastic transparency's early frames (progressive/first_frame_hold.h): frame 1's mean as
+  // it was, and the displayed mix of it with the running mean. Accumulation format; made on
+  // first use (views with BLEND surfaces only).
+  ColorTarget firstFrame;
+  ColorTarget held;
+
   // An automatic view's convergence measure (progressive/convergence.h): the displayed image
   // (tone-mapped, sRGB) of the last checkpoints, RGB10_A2 (a quarter of an 8-bit step, the
   // memory of one float copy of the mean for all four), and the tiles' changes, a texel a tile
@@ -73,6 +79,7 @@ struct RenderTargets {
   // a light, all drawn at once over the frame's depth. Remade when the count changes.
   Status ensureLightCache(int layers);
   Status ensureTransmission();
+  Status ensureFirstFrameHold();
   Status ensureOcclusion(int block);
   Status ensureConvergence(int tile);
 

@@ -91,11 +91,12 @@ struct GpuPasses {
     return {};
   }
 
-  // The displayed image of the mean into `output` (the display target, or a host's
-  // framebuffer): the post effects, then tone mapping (passes/effect_chain.h).
-  Status drawDisplayed(const RenderSettings& settings, const passes::EffectOutput& output) {
-    const auto& mean = targets->accumulation[static_cast<size_t>(targets->current)].color;
-    return effects.draw(library, mean, targets->width, targets->height, settings,
+  // The displayed image of `shown` (the mean, or an early frame's mix with frame 1) into
+  // `output` (the display target, or a host's framebuffer): the post effects, then tone
+  // mapping (passes/effect_chain.h).
+  Status drawDisplayed(const RenderSettings& settings, const passes::EffectOutput& output,
+                       const gl::Texture2D& shown) {
+    return effects.draw(library, shown, targets->width, targets->height, settings,
                         caps.colorBufferHalfFloat, output);
   }
 };

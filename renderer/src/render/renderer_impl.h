@@ -22,6 +22,7 @@
 #include "passes/camera_math.h"
 #include "penumbra/environment.h"
 #include "progressive/controller.h"
+#include "progressive/first_frame_hold.h"
 #include "progressive/first_light.h"
 #include "progressive/frame_planner.h"
 #include "progressive/light_cache.h"
@@ -61,8 +62,31 @@ struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, Conve
     passStart = now;
   }
 
+  // The mean, or in the first frames of a view with stochastic transparency its mix with
+  // frame 1 (progressive/first_frame_hold.h).
   Status drawDisplayed(const passes::EffectOutput& output) {
-    return GpuPasses::drawDisplayed(settings, output);
+    const int n = controller.framesDone();
+    const float hold = n >= 2 && holdsFirstFrame() && targets->firstFrame.color
+                           ? static_cast<float>(progressive::firstFrameHold(n))
+                           : 0.0f;
+    if (hold > 0.0f) {
+      accumulate->drawHeld(*targets, hold);
+      return GpuPasses::drawDisplayed(settings, output, targets->held.color);
+    }
+    return GpuPasses::drawDisplayed(
+        settings, output, targets->accumulation[static_cast<size_t>(targets->current)].color);
+  }
+
+  bool holdsFirstFrame() const {
+    return options.firstFrameHold && scene && !scene->blended().empty();
+  }
+
+  // After frame 1 of a view with stochastic transparency: its image, kept for the display.
+  Status keepFirstFrame() {
+    if (!holdsFirstFrame()) return {};
+    PN_TRY(targets->ensureFirstFrameHold());
+    accumulate->keepFirst(*targets);
+    return {};
   }
   Status ensureFrameResources() { return GpuPasses::ensureFrameResources(settings); }
 
@@ -219,7 +243,9 @@ struct Renderer::Impl : progressive::FrameRenderer, GpuPasses, SceneState, Conve
       PN_TRY(pending.units[pending.next++]());
     } while (all && pending.next < pending.units.size());
     PN_TRY(gl::checkError("frame " + std::to_string(pending.plan.frame)));
-    return pending.next >= pending.units.size();
+    const bool done = pending.next >= pending.units.size();
+    if (done && pending.plan.frame == 1 && !pending.preview) PN_TRY(keepFirstFrame());
+    return done;
   }
 
   // Frame 1 of the plan as a reduced preview (Renderer::preview); the caller restarted the
