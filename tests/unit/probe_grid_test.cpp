@@ -33,14 +33,15 @@ TEST(ProbeGridTest, OuterProbesTheClearanceInsideTheBounds) {
 }
 
 TEST(ProbeGridTest, AThinSlabGetsALayerOutsideEachFace) {
-  // 8 wide, 0.4 deep at density 4 (cells of 2): a fifth of a cell thick.
-  const ProbeGrid g = placeProbes(box({0, 0, -0.3f}, {8, 4, 0.1f}), 4.0f);
+  // 8 wide, 0.2 deep at density 4 (cells of 2): a tenth of a cell thick (a relief).
+  const ProbeGrid g = placeProbes(box({0, 0, -0.15f}, {8, 4, 0.05f}), 4.0f);
   ASSERT_EQ(g.counts.z, 2);
   const float cellSize = 2.0f;
-  EXPECT_FLOAT_EQ(g.position(0).z, -0.3f - 0.5f * cellSize);
-  EXPECT_FLOAT_EQ(g.position(g.count() - 1).z, 0.1f + 0.5f * cellSize);
-  // A third of a cell (a row of spheres) or a cell thick: one layer at the centre.
-  for (const float depth : {0.7f, 2.0f}) {
+  EXPECT_FLOAT_EQ(g.position(0).z, -0.15f - 0.5f * cellSize);
+  EXPECT_FLOAT_EQ(g.position(g.count() - 1).z, 0.05f + 0.5f * cellSize);
+  // A fifth of a cell (an object on a wide floor: the dense scene's rock), a third (a row of
+  // spheres) or a cell thick: one layer at the centre.
+  for (const float depth : {0.4f, 0.7f, 2.0f}) {
     const ProbeGrid one = placeProbes(box({0, 0, 0}, {8, 4, depth}), 4.0f);
     EXPECT_EQ(one.counts.z, 1) << depth;
     EXPECT_FLOAT_EQ(one.origin.z, 0.5f * depth);

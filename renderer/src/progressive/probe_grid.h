@@ -34,7 +34,7 @@ struct ProbeGrid {
 };
 
 // The grid for a scene box: `density` probes along the box's longest side (at least one along
-// every axis, about as many per unit length on the others; an axis under a quarter of a cell
+// every axis, about as many per unit length on the others; an axis under an eighth of a cell
 // thick gets two layers, half a cell outside its faces); `counts` > 0 on an axis overrides it.
 // Empty for an invalid box.
 ProbeGrid placeProbes(const Bounds& box, float density, glm::ivec3 counts = glm::ivec3(0));
