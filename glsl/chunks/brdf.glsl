@@ -81,7 +81,27 @@ vec3 diskSpecular(vec3 n, vec3 v, vec3 f0, float f90, float alpha, vec4 disk) {
   vec3 centre = -disk.xyz;
   vec3 r = reflect(-v, n);
   vec3 toRay = dot(centre, r) * r - centre;
-  vec3 lr = normalize(centre + toRay * min(1.0, disk.w / max(length(toRay), 1e-6)));
+  vec3 offset = toRay * min(1.0, disk.w / max(length(toRay), 1e-6));
+#if PN_ANISOTROPY
+  // A lobe narrow across the stretch (alpha_b) sees the disk only where the ray's offset across
+  // it lies within the disk: the point keeps that offset and moves along the stretch as far as
+  // the disk allows. The radial point dropped the offset wherever the ray passed the disk far
+  // along the stretch, so a smooth anisotropic metal's streak was a line alpha_b wide instead of
+  // the disk's width, and dimmed by the renormalisation below (AnisotropyStrengthTest).
+  if (gAnisotropic) {
+    vec3 across = gAnisoB - dot(gAnisoB, centre) * centre;
+    float len = length(across);
+    if (len > 1e-4) {
+      across /= len;
+      vec3 along = cross(centre, across);
+      float y = clamp(dot(toRay, across), -disk.w, disk.w);
+      float chord = sqrt(max(disk.w * disk.w - y * y, 0.0));
+      vec3 stretched = clamp(dot(toRay, along), -chord, chord) * along + y * across;
+      offset = mix(offset, stretched, 1.0 - gAlphaB / gAlphaT);
+    }
+  }
+#endif
+  vec3 lr = normalize(centre + offset);
   float widened = min(1.0, alpha + 0.5 * disk.w);
   float norm = (alpha / widened) * (alpha / widened);
 #if PN_ANISOTROPY

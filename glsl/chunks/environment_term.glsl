@@ -95,6 +95,13 @@ void occlusionSamples(Layers L, out vec3 diffuseDelta, inout vec3 prefiltered,
   // Specular: one GGX half vector, reflected, marched here.
   vec3 hit;
   vec3 h = tangentFrame(L.n) * sampleGgxHalfVector(pixelSample(pixel, 1.0), L.alpha);
+#if PN_ANISOTROPY
+  // The stretched lobe's first sample (anisotropicPrefiltered's), so a hit stands for it.
+  if (gAnisotropic) {
+    h = mat3(gAnisoT, gAnisoB, L.n) *
+        sampleGgxAnisotropicHalfVector(pixelSample(pixel, 1.0) * 0.5, gAlphaT, gAlphaB);
+  }
+#endif
   vec3 sDir = reflect(-L.v, h);
   if (dot(sDir, L.n) > 0.0 &&
       traceOcclusion(vWorldPos, sDir, fract(uSequence.y * 5.0 + hash2(pixel, 6u).x), hit)) {
@@ -122,6 +129,39 @@ vec3 backIrradiance(Layers L) {
 }
 #endif
 
+#if PN_ANISOTROPY && !PN_CAPTURE
+// KHR_materials_anisotropy's reflection of the environment in later frames: the split sum's
+// prefiltered term as the lobe's own mean, from four half vectors of the stretched GGX a frame
+// (a 2x2 stratification of the pixel's sequence point), each light direction weighted by n.l
+// and read at the roughness whose lobe covers the sample's share of solid angle (filtered
+// importance sampling; a GGX lobe of alpha a covers about 4 pi a^2). The bent normal's single
+// lookup (frame 1, and probe captures) is the extension's sample implementation, which left a
+// smooth, strongly stretched metal a third darker than Cycles (AnisotropyStrengthTest).
+const int kAnisotropicSamples = 4;
+vec3 anisotropicPrefiltered(Layers L) {
+  mat3 frame = mat3(gAnisoT, gAnisoB, L.n);
+  vec2 u0 = pixelSample(gl_FragCoord.xy, 1.0);
+  vec3 sum = vec3(0.0);
+  float weight = 0.0;
+  for (int i = 0; i < kAnisotropicSamples; ++i) {
+    vec2 u = (u0 + vec2(float(i & 1), float(i >> 1))) * 0.5;
+    vec3 hl = sampleGgxAnisotropicHalfVector(u, gAlphaT, gAlphaB);
+    vec3 h = frame * hl;
+    float VoH = dot(L.v, h);
+    vec3 l = 2.0 * VoH * h - L.v;
+    float NoL = dot(L.n, l);
+    float pdf = D_GGXAnisotropic(hl.z, hl.x, hl.y, gAlphaT, gAlphaB) * hl.z /
+                (4.0 * max(VoH, 1e-4));
+    float a = sqrt(1.0 / (float(kAnisotropicSamples) * max(pdf, 1e-6) * 8.0 * PI));
+    float w = VoH > 0.0 ? max(NoL, 0.0) : 0.0;
+    sum += w * envRadiance(l, sqrt(min(a, 1.0)));
+    weight += w;
+  }
+  return weight > 0.0 ? sum / weight : envRadiance(specularReflection(L.v, L.n),
+                                                   L.perceptualRoughness);
+}
+#endif
+
 // The environment's light (split sum), with this frame's occlusion samples and the probe
 // volume's answer where they have one. skyLossWeight: 1 while the diffuse term is the
 // unoccluded E(n), which a sky-shadow sample corrects later; 0 once a ray or the probes
@@ -130,6 +170,10 @@ vec3 environmentTerm(Layers L, float occlusion, inout float skyLossWeight) {
   vec3 irradiance = envIrradiance(L.n);
   vec3 r = specularReflection(L.v, L.n);
   vec3 prefiltered = envRadiance(r, L.perceptualRoughness);
+#if PN_ANISOTROPY && !PN_CAPTURE
+  // From frame 2 (uCoverageFrame >= 0: the camera's later frames).
+  if (gAnisotropic && uCoverageFrame >= 0) prefiltered = anisotropicPrefiltered(L);
+#endif
   bool diffuseHit = false, specularHit = false;
   vec3 diffuseDelta = vec3(0.0);
 #if PN_OCCLUSION

@@ -25,7 +25,7 @@
 #include "chunks/shadows.glsl"
 #endif
 // (The composer includes a file once, where it first appears: one #if per file.)
-#if PN_OCCLUSION || PN_TRANSMISSION == 2
+#if PN_OCCLUSION || PN_TRANSMISSION == 2 || PN_ANISOTROPY
 #include "chunks/sampling.glsl"
 #endif
 #if PN_OCCLUSION

@@ -48,6 +48,14 @@ vec3 sampleGgxHalfVector(vec2 u, float alpha) {
   return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
 }
 
+// Anisotropic GGX half vector around +Z, alpha_t along +X and alpha_b along +Y: the isotropic
+// slope stretched; pdf = D(h) cos(theta_h) (sampleGgxDAnisotropic, pdfGgxDAnisotropic).
+vec3 sampleGgxAnisotropicHalfVector(vec2 u, float alphaT, float alphaB) {
+  float r = sqrt(u.x / max(1.0 - u.x, 1e-7));
+  float phi = 2.0 * PI * u.y;
+  return normalize(vec3(alphaT * r * cos(phi), alphaB * r * sin(phi), 1.0));
+}
+
 mat3 tangentFrame(vec3 n) {
   vec3 up = abs(n.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
   vec3 t = normalize(cross(up, n));

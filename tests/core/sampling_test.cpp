@@ -210,6 +210,26 @@ TEST(SamplingTest, VndfSamplesFollowPdf) {
                    [&](const glm::vec3& h) { return pdfGgxVndf(v, h, alpha); }, "ggx vndf");
 }
 
+TEST(SamplingTest, AnisotropicGgxPdfIntegratesToOneAndMatchesIsotropic) {
+  for (const auto& [at, ab] :
+       {std::pair{0.6f, 0.6f}, std::pair{0.8f, 0.2f}, std::pair{1.0f, 0.3f}}) {
+    const double total = integrateSphere(
+        [&](const glm::vec3& h) { return pdfGgxDAnisotropic(h, at, ab); }, 2000, 256, 0.0);
+    EXPECT_NEAR(total, 1.0, 1e-2) << at << " " << ab;
+  }
+  for (const float c : {0.2f, 0.6f, 0.95f}) {
+    const glm::vec3 h(std::sqrt(1.0f - c * c), 0.0f, c);
+    EXPECT_NEAR(ggxDAnisotropic(h, 0.4f, 0.4f) / ggxD(c, 0.4f), 1.0, 1e-5);
+  }
+}
+
+TEST(SamplingTest, AnisotropicGgxSamplesFollowPdf) {
+  const float at = 0.9f, ab = 0.25f;
+  expectMatchesPdf([&](const glm::vec2& u) { return sampleGgxDAnisotropic(u, at, ab); },
+                   [&](const glm::vec3& h) { return pdfGgxDAnisotropic(h, at, ab); },
+                   "anisotropic ggx D");
+}
+
 TEST(SamplingTest, ExpectationOfWeightedSamples) {
   // E[f / pdf] = integral of f: f = cos^2 over the hemisphere is 2 pi / 3.
   std::mt19937 rng(99);

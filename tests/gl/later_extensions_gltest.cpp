@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "ibl/sampling.h"
 #include "penumbra/environment.h"
+#include "penumbra/ibl.h"
 #include "render_fixture.h"
 
 namespace penumbra::test {
@@ -128,6 +130,76 @@ TEST_F(LaterExtensionsGLTest, AnisotropyStretchesTheHighlightAlongItsDirection) 
   EXPECT_LE(std::abs(extent[0].x - extent[0].y), 2) << extent[0].x << " x " << extent[0].y;
   EXPECT_GT(extent[1].x, 2 * extent[1].y) << extent[1].x << " x " << extent[1].y;
   EXPECT_GT(extent[2].y, 2 * extent[2].x) << extent[2].x << " x " << extent[2].y;
+}
+
+// A sky that brightens toward the zenith (no sun: its peak is under 20 times its mean).
+float zenithSky(glm::vec3 d) {
+  const float y = std::max(d.y, 0.0f);
+  return 0.05f + 2.0f * y * y * y * y;
+}
+
+// The split sum's prefiltered term of an anisotropic GGX lobe (normal n, stretch t, view v)
+// under zenithSky: the n.l-weighted mean over light directions reflected about half vectors
+// drawn from D(h) (n.h), with the exact sky (not its prefiltered cube).
+double lobeMean(glm::vec3 n, glm::vec3 t, glm::vec3 v, float alphaT, float alphaB) {
+  const glm::vec3 b = glm::cross(n, t);
+  double sum = 0.0, weight = 0.0;
+  constexpr uint32_t kN = 1u << 18;
+  for (uint32_t i = 0; i < kN; ++i) {
+    const glm::vec3 hl = ibl::sampleGgxDAnisotropic(ibl::hammersley(i, kN), alphaT, alphaB);
+    const glm::vec3 h = ibl::toWorld(hl, t, b, n);
+    if (glm::dot(v, h) <= 0.0f) continue;
+    const glm::vec3 l = ibl::reflectAbout(v, h);
+    const double w = std::max(glm::dot(n, l), 0.0f);
+    sum += w * zenithSky(l);
+    weight += w;
+  }
+  return sum / weight;
+}
+
+TEST_F(LaterExtensionsGLTest, AnisotropicMetalReflectsItsLobesMeanOfTheSky) {
+  // A smooth white metal floor stretched fully (alpha_t 1, alpha_b 0.01), seen from 34 degrees
+  // up through a narrow field: its reflection of a sky brightening toward the zenith is the
+  // stretched lobe's mean (the metal's energy is compensated in full, so nothing else scales
+  // it), which the later frames sample; along the plane of incidence the lobe reaches the
+  // bright zenith, across it stays near the mirror direction. The extension's bent normal
+  // alone (one lookup, as before 2026-12-08) read 0.22 of the first.
+  Image pano(256, 128, 3);
+  for (int y = 0; y < pano.height; ++y) {
+    for (int x = 0; x < pano.width; ++x) {
+      const float l = zenithSky(ibl::panoramaDirection((x + 0.5f) / 256.0f, (y + 0.5f) / 128.0f));
+      float* p = pano.pixel(x, y);
+      p[0] = p[1] = p[2] = l;
+    }
+  }
+  ibl::PrefilterOptions options;
+  options.faceSize = 64;
+  options.samples = 64;
+  auto env = ibl::prefilterCpu(pano, options);
+  ASSERT_TRUE(env.ok()) << env.message();
+  const glm::vec3 eye(0.0f, 2.0f, 3.0f);
+  // Rotation 0 stretches along the x axis (the floor has no tangents), a quarter turn along z.
+  const std::pair<float, glm::vec3> stretches[] = {{1.5707963f, {0, 0, 1}}, {0.0f, {1, 0, 0}}};
+  for (const auto& [rotation, along] : stretches) {
+    Material m = lambert(glm::vec3(1.0f));
+    m.metallicFactor = 1.0f;
+    m.roughnessFactor = 0.1f;
+    m.anisotropy = 1.0f;
+    m.anisotropyRotation = rotation;
+    Scene s;
+    s.materials.push_back(m);
+    s.meshes.push_back(quadMesh(8.0f, 0.0f, 0));
+    finishScene(s);
+    RenderSettings rs;
+    rs.width = rs.height = kSize;
+    rs.progressive.frames = 32;
+    auto img = renderRadiance(s, *env, lookAtCamera(eye, {0, 0, 0}, 8.0f), rs);
+    ASSERT_TRUE(img.ok()) << img.message();
+    const float got = meanOf(*img, 20, 20, 28, 28).g;
+    const double want = lobeMean({0, 1, 0}, along, glm::normalize(eye), 1.0f, 0.01f);
+    EXPECT_NEAR(got / want, 1.0, 0.06)
+        << "rotation " << rotation << ": rendered " << got << ", the lobe's mean " << want;
+  }
 }
 
 TEST_F(LaterExtensionsGLTest, DiffuseTransmissionPassesLightToTheOtherSide) {

@@ -101,6 +101,9 @@ def _texture(tree, textures, info, colour):
     return node
 
 
+MIN_ALPHA = 0.045 * 0.045  # Penumbra's smallest GGX alpha (MIN_PERCEPTUAL_ROUGHNESS squared)
+
+
 def _scaled(tree, factor, tex_socket):
     """factor x texture socket (a number when there is no texture)."""
     return factor if tex_socket is None else _math(tree, "MULTIPLY", tex_socket, factor)
@@ -124,7 +127,11 @@ def _anisotropic(tree, aniso, textures, alpha_socket):
     s = _scaled(tree, strength, b)
     # alpha_t = a + (1 - a) s^2, alpha_b = a; Cycles: alpha_x = R / (1 + k), alpha_y = R (1 + k)
     # for k < 0 with R = roughness^2 (x along the tangent): R = sqrt(at ab), 1 + k = sqrt(ab / at).
-    a = alpha_socket
+    # alpha_b no smaller than Penumbra's (perceptual roughness 0.045, brdf.glsl): Cycles takes
+    # R and the ratio, and at roughness 0 R = sqrt(at * 0) = 0 made every stretched sphere of
+    # AnisotropyStrengthTest's first column a plain mirror, where glTF asks for a streak.
+    a = _math(tree, "MAXIMUM", alpha_socket, MIN_ALPHA) if not isinstance(alpha_socket, float) \
+        else max(alpha_socket, MIN_ALPHA)
     s2 = _math(tree, "MULTIPLY", s, s) if not isinstance(s, float) else s * s
     one_minus_a = _math(tree, "SUBTRACT", 1.0, a)
     at = _math(tree, "ADD", a, _math(tree, "MULTIPLY", one_minus_a, s2))

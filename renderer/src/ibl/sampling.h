@@ -101,6 +101,26 @@ inline float pdfGgxDReflected(float nh, float vh, float alpha) {
   return vh > 0.0f ? pdfGgxD(nh, alpha) / (4.0f * vh) : 0.0f;
 }
 
+// Anisotropic GGX (KHR_materials_anisotropy): D(h) with alpha_t along x (the stretch) and
+// alpha_b along y. Normalised as ggxD; equal to it for alpha_t = alpha_b.
+inline float ggxDAnisotropic(const glm::vec3& h, float alphaT, float alphaB) {
+  if (h.z <= 0.0f) return 0.0f;
+  const float x = h.x / alphaT, y = h.y / alphaB;
+  const float d = x * x + y * y + h.z * h.z;
+  return 1.0f / (kPi * alphaT * alphaB * d * d);
+}
+// Samples h proportionally to D(h) (n.h): the isotropic GGX's slope (radius
+// sqrt(u.x / (1 - u.x)), angle 2 pi u.y) stretched by (alpha_t, alpha_b).
+inline glm::vec3 sampleGgxDAnisotropic(const glm::vec2& u, float alphaT, float alphaB) {
+  const float r = std::sqrt(u.x / std::max(1.0f - u.x, 1e-7f));
+  const float phi = 2.0f * kPi * u.y;
+  return glm::normalize(glm::vec3(alphaT * r * std::cos(phi), alphaB * r * std::sin(phi), 1.0f));
+}
+// Density of sampleGgxDAnisotropic's half vector over solid angle.
+inline float pdfGgxDAnisotropic(const glm::vec3& h, float alphaT, float alphaB) {
+  return ggxDAnisotropic(h, alphaT, alphaB) * std::max(h.z, 0.0f);
+}
+
 // Smith Lambda for a direction with n.w = c > 0 (G1 = 1 / (1 + Lambda)).
 inline float smithLambda(float c, float alpha) {
   const float c2 = c * c;
